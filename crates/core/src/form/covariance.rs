@@ -1,0 +1,238 @@
+use nalgebra::{SMatrix, SVector};
+
+use super::outcome::{adapt, not_pd};
+use super::{sequential, Form, PredictForm, UpdateForm};
+use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
+use crate::error::ensure_finite;
+use crate::linalg::{
+    cholesky, joseph_expanded, mirror_lower, sandwich, sandwich_transposed, solve_lower,
+    solve_lower_transpose,
+};
+use crate::{
+    FilterError, LinearizedMeasurement, LinearizedProcess, Quantity, Real, StateSpace,
+    UpdateReport,
+};
+
+/// The covariance form (Kalman filter, extended Kalman filter): stores `P`,
+/// predicts `P⁻ = λ Φ P Φᵀ + Q` and updates with the Joseph form, expanded
+/// to `O(N²M)` products (see [`joseph_expanded`]). Requires
+/// [`LinearizedProcess`] and [`LinearizedMeasurement`] models.
+///
+/// When the filter has no adapter and `R` is diagonal, the update processes
+/// the measurement one component at a time (sequential scalar updates), which
+/// is cheaper and gives the same result as the batch update; see
+/// [`set_sequential`](Self::set_sequential).
+///
+/// ```
+/// use kestrel_core::form::{CovarianceForm, Form};
+/// use kestrel_core::nalgebra::Matrix2;
+/// let form = CovarianceForm::new(&Matrix2::new(2.0, 0.5, 0.5, 1.0)).unwrap();
+/// assert_eq!(form.covariance()[(0, 1)], 0.5);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct CovarianceForm<T: Real, const N: usize> {
+    /// The posterior covariance, or the propagated part `Φ P Φᵀ` while a
+    /// prediction is pending.
+    p: SMatrix<T, N, N>,
+    /// The pending process noise.
+    q: SMatrix<T, N, N>,
+    /// The pending fade of `p` from the after-predict hook.
+    fade: T,
+    pending: bool,
+    sequential: bool,
+}
+
+impl<T: Real, const N: usize> CovarianceForm<T, N> {
+    /// A form holding covariance `p0` (the lower triangle is used).
+    pub fn new(p0: &SMatrix<T, N, N>) -> Result<Self, FilterError> {
+        let mut form = Self {
+            p: SMatrix::zeros(),
+            q: SMatrix::zeros(),
+            fade: T::one(),
+            pending: false,
+            sequential: true,
+        };
+        form.set_covariance(p0)?;
+        Ok(form)
+    }
+
+    /// Enables (default) or disables sequential scalar updates for diagonal
+    /// `R` when no adapter is present.
+    pub fn set_sequential(&mut self, enabled: bool) {
+        self.sequential = enabled;
+    }
+
+    /// Whether sequential scalar updates are enabled.
+    pub fn sequential(&self) -> bool {
+        self.sequential
+    }
+
+    /// `λ_total Φ P Φᵀ + Q` for an extra fade `extra` on top of the pending one.
+    fn prior(&self, extra: T) -> SMatrix<T, N, N> {
+        if self.pending {
+            self.p * (self.fade * extra) + self.q
+        } else if extra == T::one() {
+            self.p
+        } else {
+            self.p * extra
+        }
+    }
+
+    fn commit(&mut self, p: SMatrix<T, N, N>) {
+        self.p = p;
+        self.q = SMatrix::zeros();
+        self.fade = T::one();
+        self.pending = false;
+    }
+
+    /// `(H Φ P Φᵀ Hᵀ, H Q Hᵀ)` at the pending fade.
+    fn split<const M: usize>(
+        &self,
+        h: &SMatrix<T, M, N>,
+        predicted: &SMatrix<T, M, M>,
+    ) -> (SMatrix<T, M, M>, SMatrix<T, M, M>) {
+        if self.pending {
+            (sandwich(h, &self.p) * self.fade, sandwich(h, &self.q))
+        } else {
+            (*predicted, SMatrix::zeros())
+        }
+    }
+}
+
+impl<T: Real, const N: usize> Form<T, N> for CovarianceForm<T, N> {
+    fn covariance(&self) -> SMatrix<T, N, N> {
+        self.prior(T::one())
+    }
+
+    fn set_covariance(&mut self, p: &SMatrix<T, N, N>) -> Result<(), FilterError> {
+        ensure_finite(p.as_slice(), Quantity::StateCovariance)?;
+        let mut p = *p;
+        mirror_lower(&mut p);
+        self.commit(p);
+        Ok(())
+    }
+}
+
+impl<T: Real, const N: usize, P: LinearizedProcess<T, N>> PredictForm<T, N, P>
+    for CovarianceForm<T, N>
+{
+    fn predict<A: PriorAdapter<T>, S: StateSpace<T, N>>(
+        &mut self,
+        x: &mut SVector<T, N>,
+        model: &P,
+        dt: T,
+        adapter: &mut A,
+        _space: &S,
+    ) -> Result<(), FilterError> {
+        let phi = model.transition(x, dt);
+        ensure_finite(phi.as_slice(), Quantity::Propagation)?;
+        let mut q = model.noise(x, dt);
+        ensure_finite(q.as_slice(), Quantity::ProcessNoise)?;
+        mirror_lower(&mut q);
+        let x_new = model.propagate(x, dt);
+        ensure_finite(x_new.as_slice(), Quantity::Propagation)?;
+        let propagated = sandwich(&phi, &self.prior(T::one()));
+        ensure_finite(propagated.as_slice(), Quantity::StateCovariance)?;
+
+        let mut step = PriorStep::new(dt);
+        adapter.after_predict(&mut step);
+        *x = x_new;
+        self.p = propagated;
+        self.q = q;
+        self.fade = step.fade_factor();
+        self.pending = true;
+        Ok(())
+    }
+}
+
+impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
+    UpdateForm<T, N, H, M> for CovarianceForm<T, N>
+{
+    fn update<A: NoiseAdapter<T, M>, S: StateSpace<T, N>>(
+        &mut self,
+        x: &mut SVector<T, N>,
+        model: &H,
+        z: &SVector<T, M>,
+        adapter: &mut A,
+        space: &S,
+    ) -> Result<UpdateReport<T, M, A::Report>, FilterError> {
+        ensure_finite(z.as_slice(), Quantity::Measurement)?;
+        let z_hat = model.predict(x);
+        ensure_finite(z_hat.as_slice(), Quantity::PredictedMeasurement)?;
+        let h = model.jacobian(x);
+        ensure_finite(h.as_slice(), Quantity::PredictedMeasurement)?;
+        let mut r = model.noise();
+        ensure_finite(r.as_slice(), Quantity::MeasurementNoise)?;
+        mirror_lower(&mut r);
+        let nu = model.residual(z, &z_hat);
+        ensure_finite(nu.as_slice(), Quantity::Measurement)?;
+        let prior = self.prior(T::one());
+
+        if A::IS_IDENTITY && self.sequential && sequential::is_diagonal(&r) {
+            let out = sequential::update(&prior, &h, &r, &nu)?;
+            let x_new = space.add(x, &out.correction);
+            ensure_finite(x_new.as_slice(), Quantity::UpdatedEstimate)?;
+            ensure_finite(out.covariance.as_slice(), Quantity::UpdatedEstimate)?;
+            *x = x_new;
+            self.commit(out.covariance);
+            return Ok(UpdateReport {
+                innovation: nu,
+                innovation_used: nu,
+                nominal_innovation_covariance: out.innovation_covariance,
+                innovation_covariance: out.innovation_covariance,
+                noise: r,
+                nis: out.nis,
+                adapted_nis: out.nis,
+                fade: T::one(),
+                rejected: false,
+                sequential: true,
+                adapters: A::Report::default(),
+            });
+        }
+
+        // H P⁻ (= (P⁻ Hᵀ)ᵀ) and H P⁻ Hᵀ, one triangle.
+        let hp = h * prior;
+        let hph = sandwich_transposed(&hp, &h);
+        let split = A::NEEDS_SPLIT.then(|| self.split(&h, &hph));
+        let step = GainStep::new(nu, hph, split, r).ok_or(not_pd(0))?;
+        let mut done = adapt(adapter, step);
+        let fade = done.step.fade_factor();
+        if done.step.is_rejected() {
+            self.commit(prior);
+            return Ok(done.rejected(nu));
+        }
+
+        let (prior, hp, hph) = if fade == T::one() {
+            (prior, hp, hph)
+        } else {
+            let prior = self.prior(fade);
+            let hp = h * prior;
+            let hph = sandwich_transposed(&hp, &h);
+            (prior, hp, hph)
+        };
+        let r_used = *done.step.noise();
+        let nu_used = *done.step.innovation();
+        ensure_finite(r_used.as_slice(), Quantity::MeasurementNoise)?;
+        ensure_finite(nu_used.as_slice(), Quantity::Measurement)?;
+        let c = hph + r_used;
+        let l = cholesky(&c).map_err(|e| not_pd(e.index))?;
+        // Kᵀ = C⁻¹ H P⁻ by two triangular solves.
+        let mut kt = hp;
+        solve_lower(&l, &mut kt);
+        solve_lower_transpose(&l, &mut kt);
+        let k = kt.transpose();
+        let x_new = space.add(x, &(k * nu_used));
+        let p_new = joseph_expanded(&prior, &k, &hp.transpose(), &c);
+        ensure_finite(x_new.as_slice(), Quantity::UpdatedEstimate)?;
+        ensure_finite(p_new.as_slice(), Quantity::UpdatedEstimate)?;
+
+        *x = x_new;
+        let total_fade = if self.pending { self.fade * fade } else { fade };
+        self.commit(p_new);
+        adapter.after_update(
+            &Posterior::new(&nu_used, &hph, &r_used, &l),
+            &mut done.adapters,
+        );
+        Ok(done.accepted(nu, c, &l, total_fade))
+    }
+}

@@ -1,0 +1,85 @@
+//! The adapter round shared by every form: build the measurement-space
+//! view, run `before_gain`, and assemble the report.
+
+use nalgebra::{SMatrix, SVector};
+
+use crate::adapter::{GainStep, NoiseAdapter};
+use crate::linalg::solve_lower;
+use crate::{FilterError, Quantity, Real, UpdateReport};
+
+/// The state of an update after the adapters' `before_gain`.
+pub(crate) struct AdaptedStep<T: Real, const M: usize, R> {
+    pub step: GainStep<T, M>,
+    pub nominal_c: SMatrix<T, M, M>,
+    pub nis: T,
+    pub adapters: R,
+}
+
+pub(crate) fn not_pd(index: usize) -> FilterError {
+    FilterError::NotPositiveDefinite {
+        what: Quantity::InnovationCovariance,
+        index,
+    }
+}
+
+/// Runs the adapters on a freshly built view.
+pub(crate) fn adapt<T: Real, const M: usize, A: NoiseAdapter<T, M>>(
+    adapter: &mut A,
+    mut step: GainStep<T, M>,
+) -> AdaptedStep<T, M, A::Report> {
+    let nominal_c = *step.innovation_covariance();
+    let nis = step.mahalanobis().unwrap_or_else(T::zero);
+    let mut adapters = A::Report::default();
+    adapter.before_gain(&mut step, &mut adapters);
+    AdaptedStep {
+        step,
+        nominal_c,
+        nis,
+        adapters,
+    }
+}
+
+impl<T: Real, const M: usize, R> AdaptedStep<T, M, R> {
+    /// The report of a measurement an adapter rejected.
+    pub fn rejected(self, innovation: SVector<T, M>) -> UpdateReport<T, M, R> {
+        UpdateReport {
+            innovation,
+            innovation_used: *self.step.innovation(),
+            nominal_innovation_covariance: self.nominal_c,
+            innovation_covariance: *self.step.innovation_covariance(),
+            noise: *self.step.noise(),
+            nis: self.nis,
+            adapted_nis: self.step.mahalanobis().unwrap_or_else(T::zero),
+            fade: T::one(),
+            rejected: true,
+            sequential: false,
+            adapters: self.adapters,
+        }
+    }
+
+    /// The report of an accepted update with innovation covariance `c`
+    /// (lower factor `l`) and total fade `fade`.
+    pub fn accepted(
+        self,
+        innovation: SVector<T, M>,
+        c: SMatrix<T, M, M>,
+        l: &SMatrix<T, M, M>,
+        fade: T,
+    ) -> UpdateReport<T, M, R> {
+        let mut white = *self.step.innovation();
+        solve_lower(l, &mut white);
+        UpdateReport {
+            innovation,
+            innovation_used: *self.step.innovation(),
+            nominal_innovation_covariance: self.nominal_c,
+            innovation_covariance: c,
+            noise: *self.step.noise(),
+            nis: self.nis,
+            adapted_nis: white.norm_squared(),
+            fade,
+            rejected: false,
+            sequential: false,
+            adapters: self.adapters,
+        }
+    }
+}

@@ -1,0 +1,338 @@
+use nalgebra::{SMatrix, SVector};
+
+use super::outcome::{adapt, not_pd};
+use super::unscented::effective_jacobian;
+use super::{Form, PredictForm, UpdateForm};
+use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
+use crate::error::ensure_finite;
+use crate::linalg::{
+    add_columns, cholesky, cholesky_semidefinite, downdate_in_place, mirror_lower,
+    solve_lower, solve_lower_transpose, update_in_place, weighted_rank_one,
+};
+use crate::sigma::{self, MeasuredSigma, MerweParams, Pairs, SigmaWeights};
+use crate::{FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace, UpdateReport};
+
+/// How the square-root form folds the weighted sigma-point deviations into
+/// the covariance factor in its time update.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TimeUpdate {
+    /// Householder triangularisation of `[S_Q | √W d₁ … √W d₂ₙ]` (a QR
+    /// factorisation exploiting the triangle): about `2N³` multiply-adds.
+    #[default]
+    Householder,
+    /// `2N` Givens rank-one updates of `S_Q`: about `4N³` multiplications.
+    RankOne,
+}
+
+/// The square-root unscented form (SR-UKF, van der Merwe): carries the lower
+/// Cholesky factor `S` of the covariance (`P = S Sᵀ`), so the covariance it
+/// represents is positive semi-definite by construction.
+///
+/// - Time update: sigma points from `S`, the weighted deviations folded into
+///   `chol(Q)` by [`TimeUpdate`], the centre point added or (negative
+///   weight) removed by a checked rank-one update.
+/// - Measurement update: `S_z` from `chol(R)` and the measurement deviations
+///   the same way; `K = P_xz S_z⁻ᵀ S_z⁻¹` by two triangular solves;
+///   `S⁺` from `S⁻` by one checked rank-one downdate per column of
+///   `U = K S_z`. A downdate that would lose positive definiteness returns
+///   [`FilterError::DowndateFailed`] and leaves the filter unchanged.
+///
+/// When the adapter needs the propagated covariance apart from `Q`
+/// ([`PriorAdapter::NEEDS_SPLIT`]), the factor of `Q` is kept separately and
+/// merged at the update, after any fade `λ` scaled the propagated factor by
+/// `√λ`.
+///
+/// ```
+/// use kestrel_core::form::{Form, SquareRootForm};
+/// use kestrel_core::nalgebra::Matrix2;
+/// let form = SquareRootForm::new(&Matrix2::new(4.0, 2.0, 2.0, 5.0)).unwrap();
+/// assert_eq!(form.factor(), Matrix2::new(2.0, 0.0, 1.0, 2.0));
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct SquareRootForm<T: Real, const N: usize> {
+    /// Factor of the posterior, or of the propagated part while pending.
+    s: SMatrix<T, N, N>,
+    /// Factor of the pending process noise.
+    sq: SMatrix<T, N, N>,
+    fade: T,
+    pending: bool,
+    params: MerweParams<T>,
+    weights: SigmaWeights<T>,
+    time_update: TimeUpdate,
+}
+
+impl<T: Real, const N: usize> SquareRootForm<T, N> {
+    /// A form holding the factor of `p0` (lower triangle used; must be
+    /// positive semi-definite) with the default sigma points.
+    pub fn new(p0: &SMatrix<T, N, N>) -> Result<Self, FilterError> {
+        let params = MerweParams::default();
+        let weights = params
+            .weights(N)
+            .ok_or(FilterError::InvalidParameter { name: "N" })?;
+        let mut form = Self {
+            s: SMatrix::zeros(),
+            sq: SMatrix::zeros(),
+            fade: T::one(),
+            pending: false,
+            params,
+            weights,
+            time_update: TimeUpdate::default(),
+        };
+        form.set_covariance(p0)?;
+        Ok(form)
+    }
+
+    /// A form from a lower-triangular factor `s` directly (`P = S Sᵀ`; the
+    /// strict upper triangle is ignored).
+    pub fn from_factor(s: &SMatrix<T, N, N>) -> Result<Self, FilterError> {
+        ensure_finite(s.as_slice(), Quantity::StateCovariance)?;
+        let mut form = Self::new(&SMatrix::zeros())?;
+        form.s = s.lower_triangle();
+        Ok(form)
+    }
+
+    /// The same form with sigma-point parameters `params`.
+    pub fn with_params(mut self, params: MerweParams<T>) -> Result<Self, FilterError> {
+        self.weights = params
+            .weights(N)
+            .ok_or(FilterError::InvalidParameter { name: "MerweParams" })?;
+        self.params = params;
+        Ok(self)
+    }
+
+    /// The same form with time-update method `method`.
+    pub fn with_time_update(mut self, method: TimeUpdate) -> Self {
+        self.time_update = method;
+        self
+    }
+
+    /// The sigma-point parameters.
+    pub fn params(&self) -> &MerweParams<T> {
+        &self.params
+    }
+
+    /// The lower Cholesky factor `S` of the covariance (with any pending
+    /// process noise merged in).
+    pub fn factor(&self) -> SMatrix<T, N, N> {
+        self.prior_factor(T::one())
+    }
+
+    /// Factor of `λ_total S Sᵀ + S_Q S_Qᵀ` for an extra fade `extra`.
+    fn prior_factor(&self, extra: T) -> SMatrix<T, N, N> {
+        if !self.pending {
+            return if extra == T::one() {
+                self.s
+            } else {
+                self.s * extra.sqrt()
+            };
+        }
+        let mut s = self.s * (self.fade * extra).sqrt();
+        let mut cols: [SVector<T, N>; N] = core::array::from_fn(|i| self.sq.column(i).into_owned());
+        add_columns(&mut s, &mut cols);
+        s
+    }
+
+    fn commit(&mut self, s: SMatrix<T, N, N>) {
+        self.s = s;
+        self.sq = SMatrix::zeros();
+        self.fade = T::one();
+        self.pending = false;
+    }
+
+    /// Folds `Σ w dᵢ dᵢᵀ` over the pairs into `start`, by the configured method.
+    fn fold<const D: usize>(
+        method: TimeUpdate,
+        start: &mut SMatrix<T, D, D>,
+        pairs: &mut Pairs<T, D, N>,
+        sqrt_w: T,
+    ) {
+        let cols = pairs.as_flattened_mut();
+        for c in cols.iter_mut() {
+            *c *= sqrt_w;
+        }
+        match method {
+            TimeUpdate::Householder => add_columns(start, cols),
+            TimeUpdate::RankOne => {
+                for c in cols.iter_mut() {
+                    // Adding a finite PSD term cannot fail; non-finite input
+                    // was rejected before.
+                    let _ = update_in_place(start, c);
+                }
+            }
+        }
+    }
+
+    /// `S_z` with `S_z S_zᵀ = Σ Wc dzⱼ dzⱼᵀ + R`, from `chol(R)`.
+    fn innovation_factor<const M: usize>(
+        &self,
+        measured: &MeasuredSigma<T, N, M>,
+        r: &SMatrix<T, M, M>,
+    ) -> Result<SMatrix<T, M, M>, FilterError> {
+        let mut sz = cholesky(r).map_err(|e| FilterError::NotPositiveDefinite {
+            what: Quantity::MeasurementNoise,
+            index: e.index,
+        })?;
+        let mut pairs = measured.pairs;
+        Self::fold(self.time_update, &mut sz, &mut pairs, self.weights.other.sqrt());
+        weighted_rank_one(&mut sz, &measured.center, self.weights.cov0)
+            .map_err(|e| not_pd(e.index))?;
+        Ok(sz)
+    }
+}
+
+impl<T: Real, const N: usize> Form<T, N> for SquareRootForm<T, N> {
+    fn covariance(&self) -> SMatrix<T, N, N> {
+        let s = self.factor();
+        let mut p = s * s.transpose();
+        mirror_lower(&mut p);
+        p
+    }
+
+    fn set_covariance(&mut self, p: &SMatrix<T, N, N>) -> Result<(), FilterError> {
+        ensure_finite(p.as_slice(), Quantity::StateCovariance)?;
+        let s = cholesky_semidefinite(p).map_err(|e| FilterError::NotPositiveDefinite {
+            what: Quantity::StateCovariance,
+            index: e.index,
+        })?;
+        self.commit(s);
+        Ok(())
+    }
+}
+
+impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for SquareRootForm<T, N> {
+    fn predict<A: PriorAdapter<T>, S: StateSpace<T, N>>(
+        &mut self,
+        x: &mut SVector<T, N>,
+        model: &P,
+        dt: T,
+        adapter: &mut A,
+        space: &S,
+    ) -> Result<(), FilterError> {
+        let s = self.prior_factor(T::one());
+        let mut q = model.noise(x, dt);
+        ensure_finite(q.as_slice(), Quantity::ProcessNoise)?;
+        mirror_lower(&mut q);
+        let sq = cholesky_semidefinite(&q).map_err(|e| FilterError::NotPositiveDefinite {
+            what: Quantity::ProcessNoise,
+            index: e.index,
+        })?;
+        let mut propagated = sigma::propagate(x, &s, &self.weights, model, dt, space)?;
+
+        let mut step = PriorStep::new(dt);
+        adapter.after_predict(&mut step);
+        let lambda = step.fade_factor();
+        let mut factor = if A::NEEDS_SPLIT { SMatrix::zeros() } else { sq };
+        Self::fold(
+            self.time_update,
+            &mut factor,
+            &mut propagated.pairs,
+            (self.weights.other * lambda).sqrt(),
+        );
+        weighted_rank_one(&mut factor, &propagated.center, self.weights.cov0 * lambda)
+            .map_err(|e| FilterError::DowndateFailed {
+                column: 0,
+                index: e.index,
+            })?;
+        ensure_finite(factor.as_slice(), Quantity::StateCovariance)?;
+
+        *x = propagated.mean;
+        if A::NEEDS_SPLIT {
+            self.s = factor;
+            self.sq = sq;
+            self.fade = T::one();
+            self.pending = true;
+        } else {
+            self.commit(factor);
+        }
+        Ok(())
+    }
+}
+
+impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> UpdateForm<T, N, H, M>
+    for SquareRootForm<T, N>
+{
+    fn update<A: NoiseAdapter<T, M>, S: StateSpace<T, N>>(
+        &mut self,
+        x: &mut SVector<T, N>,
+        model: &H,
+        z: &SVector<T, M>,
+        adapter: &mut A,
+        space: &S,
+    ) -> Result<UpdateReport<T, M, A::Report>, FilterError> {
+        ensure_finite(z.as_slice(), Quantity::Measurement)?;
+        let mut r = model.noise();
+        ensure_finite(r.as_slice(), Quantity::MeasurementNoise)?;
+        mirror_lower(&mut r);
+        let w = self.weights;
+
+        let prior = self.prior_factor(T::one());
+        let measured = sigma::measure(x, &prior, &w, model, space)?;
+        let sz = self.innovation_factor(&measured, &r)?;
+        let mut c = sz * sz.transpose();
+        mirror_lower(&mut c);
+        let nu = model.residual(z, &measured.z_hat);
+        ensure_finite(nu.as_slice(), Quantity::Measurement)?;
+
+        let split = A::NEEDS_SPLIT.then(|| {
+            match (self.pending, effective_jacobian(&prior, &measured.cross)) {
+                (true, Some(h)) => {
+                    let gp = h * self.s;
+                    let gq = h * self.sq;
+                    (gp * gp.transpose() * self.fade, gq * gq.transpose())
+                }
+                _ => (c - r, SMatrix::zeros()),
+            }
+        });
+        let step = GainStep::with_factor(nu, c - r, split, r, sz);
+        let mut done = adapt(adapter, step);
+        let fade = done.step.fade_factor();
+        if done.step.is_rejected() {
+            self.commit(prior);
+            return Ok(done.rejected(nu));
+        }
+
+        let r_used = *done.step.noise();
+        let nu_used = *done.step.innovation();
+        ensure_finite(r_used.as_slice(), Quantity::MeasurementNoise)?;
+        ensure_finite(nu_used.as_slice(), Quantity::Measurement)?;
+        let (prior, measured, sz) = if fade != T::one() {
+            let prior = self.prior_factor(fade);
+            let measured = sigma::measure(x, &prior, &w, model, space)?;
+            let sz = self.innovation_factor(&measured, &r_used)?;
+            (prior, measured, sz)
+        } else if done.step.noise_changed() {
+            let sz = self.innovation_factor(&measured, &r_used)?;
+            (prior, measured, sz)
+        } else {
+            (prior, measured, sz)
+        };
+        let mut c = sz * sz.transpose();
+        mirror_lower(&mut c);
+
+        // Kᵀ = S_z⁻ᵀ S_z⁻¹ P_xzᵀ.
+        let mut kt = measured.cross.transpose();
+        solve_lower(&sz, &mut kt);
+        solve_lower_transpose(&sz, &mut kt);
+        let k = kt.transpose();
+        let x_new = space.add(x, &(k * nu_used));
+        ensure_finite(x_new.as_slice(), Quantity::UpdatedEstimate)?;
+        let u = k * sz;
+        let mut s_new = prior;
+        for j in 0..M {
+            let mut col = u.column(j).into_owned();
+            downdate_in_place(&mut s_new, &mut col)
+                .map_err(|index| FilterError::DowndateFailed { column: j, index })?;
+        }
+        ensure_finite(s_new.as_slice(), Quantity::UpdatedEstimate)?;
+
+        *x = x_new;
+        let total_fade = if self.pending { self.fade * fade } else { fade };
+        self.commit(s_new);
+        let predicted = c - r_used;
+        adapter.after_update(
+            &Posterior::new(&nu_used, &predicted, &r_used, &sz),
+            &mut done.adapters,
+        );
+        Ok(done.accepted(nu, c, &sz, total_fade))
+    }
+}

@@ -1,0 +1,229 @@
+use nalgebra::{SMatrix, SVector};
+
+use super::outcome::{adapt, not_pd};
+use super::{Form, PredictForm, UpdateForm};
+use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
+use crate::error::ensure_finite;
+use crate::linalg::{
+    cholesky, cholesky_semidefinite, joseph_expanded, mirror_lower, sandwich, solve_lower,
+    solve_lower_transpose,
+};
+use crate::sigma::{self, MerweParams, SigmaWeights};
+use crate::{FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace, UpdateReport};
+
+/// The unscented form (UKF) with Merwe scaled sigma points. Needs no
+/// Jacobians: plain [`ProcessModel`] and [`MeasurementModel`] suffice.
+///
+/// Predict propagates `2N + 1` sigma points drawn from `P` and keeps their
+/// covariance apart from `Q`. Update redraws the sigma points from
+/// `P⁻ = λ Φ P Φᵀ + Q` (so, on a linear model, the result equals the Kalman
+/// filter exactly), and applies `P⁺ = P⁻ − K P_xzᵀ − P_xz Kᵀ + K C Kᵀ`, the
+/// expanded Joseph form with `P_xz` in place of `P Hᵀ`.
+///
+/// ```
+/// use kestrel_core::form::UnscentedForm;
+/// use kestrel_core::sigma::MerweParams;
+/// use kestrel_core::nalgebra::Matrix2;
+/// let form = UnscentedForm::new(&Matrix2::identity()).unwrap()
+///     .with_params(MerweParams::new(0.5, 2.0, 1.0)).unwrap();
+/// assert_eq!(form.params().alpha, 0.5);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct UnscentedForm<T: Real, const N: usize> {
+    p: SMatrix<T, N, N>,
+    q: SMatrix<T, N, N>,
+    fade: T,
+    pending: bool,
+    params: MerweParams<T>,
+    weights: SigmaWeights<T>,
+}
+
+impl<T: Real, const N: usize> UnscentedForm<T, N> {
+    /// A form holding covariance `p0` (lower triangle used) with the default
+    /// sigma points.
+    pub fn new(p0: &SMatrix<T, N, N>) -> Result<Self, FilterError> {
+        let params = MerweParams::default();
+        let weights = params
+            .weights(N)
+            .ok_or(FilterError::InvalidParameter { name: "N" })?;
+        let mut form = Self {
+            p: SMatrix::zeros(),
+            q: SMatrix::zeros(),
+            fade: T::one(),
+            pending: false,
+            params,
+            weights,
+        };
+        form.set_covariance(p0)?;
+        Ok(form)
+    }
+
+    /// The same form with sigma-point parameters `params`.
+    pub fn with_params(mut self, params: MerweParams<T>) -> Result<Self, FilterError> {
+        self.weights = params
+            .weights(N)
+            .ok_or(FilterError::InvalidParameter { name: "MerweParams" })?;
+        self.params = params;
+        Ok(self)
+    }
+
+    /// The sigma-point parameters.
+    pub fn params(&self) -> &MerweParams<T> {
+        &self.params
+    }
+
+    /// The sigma-point weights for this state size.
+    pub fn weights(&self) -> &SigmaWeights<T> {
+        &self.weights
+    }
+
+    fn prior(&self, extra: T) -> SMatrix<T, N, N> {
+        if self.pending {
+            self.p * (self.fade * extra) + self.q
+        } else if extra == T::one() {
+            self.p
+        } else {
+            self.p * extra
+        }
+    }
+
+    fn commit(&mut self, p: SMatrix<T, N, N>) {
+        self.p = p;
+        self.q = SMatrix::zeros();
+        self.fade = T::one();
+        self.pending = false;
+    }
+}
+
+fn factor<T: Real, const N: usize>(p: &SMatrix<T, N, N>) -> Result<SMatrix<T, N, N>, FilterError> {
+    cholesky_semidefinite(p).map_err(|e| FilterError::NotPositiveDefinite {
+        what: Quantity::StateCovariance,
+        index: e.index,
+    })
+}
+
+/// The statistical linearisation `H = P_xzᵀ P⁻¹` (through the factor `S` of
+/// `P`), or `None` where `P` is singular.
+pub(crate) fn effective_jacobian<T: Real, const N: usize, const M: usize>(
+    s: &SMatrix<T, N, N>,
+    cross: &SMatrix<T, N, M>,
+) -> Option<SMatrix<T, M, N>> {
+    let mut g = *cross;
+    solve_lower(s, &mut g);
+    solve_lower_transpose(s, &mut g);
+    g.iter().all(|v| v.is_finite()).then(|| g.transpose())
+}
+
+impl<T: Real, const N: usize> Form<T, N> for UnscentedForm<T, N> {
+    fn covariance(&self) -> SMatrix<T, N, N> {
+        self.prior(T::one())
+    }
+
+    fn set_covariance(&mut self, p: &SMatrix<T, N, N>) -> Result<(), FilterError> {
+        ensure_finite(p.as_slice(), Quantity::StateCovariance)?;
+        let mut p = *p;
+        mirror_lower(&mut p);
+        self.commit(p);
+        Ok(())
+    }
+}
+
+impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for UnscentedForm<T, N> {
+    fn predict<A: PriorAdapter<T>, S: StateSpace<T, N>>(
+        &mut self,
+        x: &mut SVector<T, N>,
+        model: &P,
+        dt: T,
+        adapter: &mut A,
+        space: &S,
+    ) -> Result<(), FilterError> {
+        let s = factor(&self.prior(T::one()))?;
+        let mut q = model.noise(x, dt);
+        ensure_finite(q.as_slice(), Quantity::ProcessNoise)?;
+        mirror_lower(&mut q);
+        let propagated = sigma::propagate(x, &s, &self.weights, model, dt, space)?;
+        let p = propagated.covariance(&self.weights);
+        ensure_finite(p.as_slice(), Quantity::StateCovariance)?;
+
+        let mut step = PriorStep::new(dt);
+        adapter.after_predict(&mut step);
+        *x = propagated.mean;
+        self.p = p;
+        self.q = q;
+        self.fade = step.fade_factor();
+        self.pending = true;
+        Ok(())
+    }
+}
+
+impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> UpdateForm<T, N, H, M>
+    for UnscentedForm<T, N>
+{
+    fn update<A: NoiseAdapter<T, M>, S: StateSpace<T, N>>(
+        &mut self,
+        x: &mut SVector<T, N>,
+        model: &H,
+        z: &SVector<T, M>,
+        adapter: &mut A,
+        space: &S,
+    ) -> Result<UpdateReport<T, M, A::Report>, FilterError> {
+        ensure_finite(z.as_slice(), Quantity::Measurement)?;
+        let mut r = model.noise();
+        ensure_finite(r.as_slice(), Quantity::MeasurementNoise)?;
+        mirror_lower(&mut r);
+        let w = self.weights;
+
+        let prior = self.prior(T::one());
+        let s = factor(&prior)?;
+        let measured = sigma::measure(x, &s, &w, model, space)?;
+        let pzz = measured.covariance(&w);
+        let nu = model.residual(z, &measured.z_hat);
+        ensure_finite(nu.as_slice(), Quantity::Measurement)?;
+
+        let split = A::NEEDS_SPLIT.then(|| {
+            match (self.pending, effective_jacobian(&s, &measured.cross)) {
+                (true, Some(h)) => (sandwich(&h, &self.p) * self.fade, sandwich(&h, &self.q)),
+                _ => (pzz, SMatrix::zeros()),
+            }
+        });
+        let step = GainStep::new(nu, pzz, split, r).ok_or(not_pd(0))?;
+        let mut done = adapt(adapter, step);
+        let fade = done.step.fade_factor();
+        if done.step.is_rejected() {
+            self.commit(prior);
+            return Ok(done.rejected(nu));
+        }
+
+        let (prior, measured, pzz) = if fade == T::one() {
+            (prior, measured, pzz)
+        } else {
+            let prior = self.prior(fade);
+            let measured = sigma::measure(x, &factor(&prior)?, &w, model, space)?;
+            let pzz = measured.covariance(&w);
+            (prior, measured, pzz)
+        };
+        let r_used = *done.step.noise();
+        let nu_used = *done.step.innovation();
+        ensure_finite(r_used.as_slice(), Quantity::MeasurementNoise)?;
+        ensure_finite(nu_used.as_slice(), Quantity::Measurement)?;
+        let c = pzz + r_used;
+        let l = cholesky(&c).map_err(|e| not_pd(e.index))?;
+        let mut kt = measured.cross.transpose();
+        solve_lower(&l, &mut kt);
+        solve_lower_transpose(&l, &mut kt);
+        let k = kt.transpose();
+        let x_new = space.add(x, &(k * nu_used));
+        let p_new = joseph_expanded(&prior, &k, &measured.cross, &c);
+        ensure_finite(x_new.as_slice(), Quantity::UpdatedEstimate)?;
+        ensure_finite(p_new.as_slice(), Quantity::UpdatedEstimate)?;
+
+        *x = x_new;
+        let total_fade = if self.pending { self.fade * fade } else { fade };
+        self.commit(p_new);
+        adapter.after_update(
+            &Posterior::new(&nu_used, &pzz, &r_used, &l),
+            &mut done.adapters,
+        );
+        Ok(done.accepted(nu, c, &l, total_fade))
+    }
+}

@@ -1,0 +1,195 @@
+use core::fmt;
+
+use nalgebra::SMatrix;
+
+use crate::real::{epsilon, lit};
+use crate::Real;
+
+/// A Cholesky factorisation met a pivot that is not positive.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct NotPositiveDefinite {
+    /// Row / column of the failing pivot.
+    pub index: usize,
+}
+
+impl fmt::Display for NotPositiveDefinite {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "matrix is not positive definite at pivot {}", self.index)
+    }
+}
+
+impl core::error::Error for NotPositiveDefinite {}
+
+/// Lower Cholesky factor `L` of a symmetric positive-definite matrix
+/// (`A = L Lᵀ`), reading only the lower triangle of `a`.
+///
+/// A pivot that is not finite, or not larger than `N·ε` times the original
+/// diagonal element (the matrix is singular to working precision), is
+/// reported with its index instead of producing NaN.
+///
+/// ```
+/// use kestrel_core::linalg::cholesky;
+/// use kestrel_core::nalgebra::Matrix2;
+/// let l = cholesky(&Matrix2::new(4.0, 2.0, 2.0, 5.0)).unwrap();
+/// assert_eq!(l, Matrix2::new(2.0, 0.0, 1.0, 2.0));
+/// assert_eq!(cholesky(&Matrix2::new(1.0, 2.0, 2.0, 1.0)).unwrap_err().index, 1);
+/// ```
+pub fn cholesky<T: Real, const N: usize>(
+    a: &SMatrix<T, N, N>,
+) -> Result<SMatrix<T, N, N>, NotPositiveDefinite> {
+    let rel = epsilon::<T>() * lit::<T>(N as f64);
+    factor(a, |k, d, original, _column| {
+        if d.is_finite() && d > rel * original.abs() && d > T::zero() {
+            Ok(Some(d.sqrt()))
+        } else {
+            Err(NotPositiveDefinite { index: k })
+        }
+    })
+}
+
+/// Lower Cholesky factor of a symmetric positive **semi**-definite matrix,
+/// such as a process noise covariance with noise-free states.
+///
+/// A pivot within `N·ε·max|diag|` of zero gives a zero column, provided the
+/// rest of that column is zero to the same precision (as it must be for a
+/// semi-definite matrix); otherwise the matrix is indefinite and the pivot
+/// index is returned.
+///
+/// ```
+/// use kestrel_core::linalg::cholesky_semidefinite;
+/// use kestrel_core::nalgebra::Matrix2;
+/// let l = cholesky_semidefinite(&Matrix2::new(4.0, 0.0, 0.0, 0.0)).unwrap();
+/// assert_eq!(l, Matrix2::new(2.0, 0.0, 0.0, 0.0));
+/// assert!(cholesky_semidefinite(&Matrix2::new(0.0, 1.0, 1.0, 0.0)).is_err());
+/// ```
+pub fn cholesky_semidefinite<T: Real, const N: usize>(
+    a: &SMatrix<T, N, N>,
+) -> Result<SMatrix<T, N, N>, NotPositiveDefinite> {
+    let mut scale = T::zero();
+    for i in 0..N {
+        scale = scale.max(a[(i, i)].abs());
+    }
+    let tol = epsilon::<T>() * lit::<T>(N as f64) * scale;
+    factor(a, |k, d, _original, column: &[T]| {
+        if !d.is_finite() || d < -tol {
+            return Err(NotPositiveDefinite { index: k });
+        }
+        if d > tol {
+            return Ok(Some(d.sqrt()));
+        }
+        // A zero pivot of a semi-definite matrix has a zero column below it
+        // (Cauchy–Schwarz); anything larger than rounding means indefinite.
+        let limit = (tol * scale).sqrt() * lit(4.0);
+        if column.iter().all(|v| v.abs() <= limit) {
+            Ok(None)
+        } else {
+            Err(NotPositiveDefinite { index: k })
+        }
+    })
+}
+
+/// Right-looking column Cholesky. `pivot(k, d, a_kk, column_below)` turns the
+/// Schur pivot `d` into the diagonal (`None` = zero column) or an error.
+#[inline(always)]
+fn factor<T: Real, const N: usize>(
+    a: &SMatrix<T, N, N>,
+    mut pivot: impl FnMut(usize, T, T, &[T]) -> Result<Option<T>, NotPositiveDefinite>,
+) -> Result<SMatrix<T, N, N>, NotPositiveDefinite> {
+    let mut l = *a;
+    let s = l.as_mut_slice();
+    for k in 0..N {
+        let d = s[k * N + k];
+        match pivot(k, d, a[(k, k)], &s[k * N + k + 1..k * N + N])? {
+            Some(root) => {
+                let inv = root.recip();
+                s[k * N + k] = root;
+                for v in &mut s[k * N + k + 1..k * N + N] {
+                    *v *= inv;
+                }
+            }
+            None => {
+                for v in &mut s[k * N + k..k * N + N] {
+                    *v = T::zero();
+                }
+                continue;
+            }
+        }
+        // Trailing update of the lower triangle: A[j.., j] -= L[j.., k] L[j, k].
+        let (head, tail) = s.split_at_mut((k + 1) * N);
+        let lk = &head[k * N..k * N + N];
+        for j in k + 1..N {
+            let ljk = lk[j];
+            if ljk == T::zero() {
+                continue;
+            }
+            let col = &mut tail[(j - k - 1) * N..(j - k) * N];
+            for i in j..N {
+                col[i] -= lk[i] * ljk;
+            }
+        }
+    }
+    // Clear the strict upper triangle (it still holds the input).
+    for j in 1..N {
+        for i in 0..j {
+            s[j * N + i] = T::zero();
+        }
+    }
+    Ok(l)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+    use nalgebra::{Matrix3, Matrix4};
+
+    #[test]
+    fn factors_a_hand_computed_3x3() {
+        // A = L Lᵀ with L = [[2,0,0],[1,3,0],[-1,2,4]].
+        let l = Matrix3::new(2.0, 0.0, 0.0, 1.0, 3.0, 0.0, -1.0, 2.0, 4.0);
+        let a = l * l.transpose();
+        assert_relative_eq!(cholesky(&a).unwrap(), l, epsilon = 1e-14);
+    }
+
+    #[test]
+    fn reads_only_the_lower_triangle() {
+        let mut a = Matrix3::new(4.0, 0.0, 0.0, 2.0, 10.0, 0.0, -2.0, 5.0, 21.0);
+        let l = cholesky(&a).unwrap();
+        a.fill_upper_triangle_with_lower_triangle();
+        assert_relative_eq!(l * l.transpose(), a, epsilon = 1e-13);
+    }
+
+    #[test]
+    fn reports_the_failing_pivot() {
+        let a = Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, -1.0);
+        assert_eq!(cholesky(&a), Err(NotPositiveDefinite { index: 2 }));
+        let nan = Matrix3::new(1.0, 0.0, 0.0, 0.0, f64::NAN, 0.0, 0.0, 0.0, 1.0);
+        assert_eq!(cholesky(&nan), Err(NotPositiveDefinite { index: 1 }));
+    }
+
+    #[test]
+    fn singular_to_working_precision_is_rejected() {
+        // Rank one: [1 1; 1 1] has a zero second pivot.
+        let a = nalgebra::Matrix2::new(1.0, 1.0, 1.0, 1.0);
+        assert_eq!(cholesky(&a), Err(NotPositiveDefinite { index: 1 }));
+    }
+
+    #[test]
+    fn semidefinite_accepts_zero_columns_in_the_middle() {
+        let mut a = Matrix4::zeros();
+        a[(0, 0)] = 4.0;
+        a[(2, 2)] = 9.0;
+        a[(3, 3)] = 1.0;
+        a[(3, 0)] = 1.0;
+        a[(0, 3)] = 1.0;
+        let l = cholesky_semidefinite(&a).unwrap();
+        assert_relative_eq!(l * l.transpose(), a, epsilon = 1e-14);
+        assert_eq!(l[(1, 1)], 0.0);
+    }
+
+    #[test]
+    fn semidefinite_rejects_negative_pivots() {
+        let a = Matrix3::new(1.0, 0.0, 0.0, 0.0, -1e-3, 0.0, 0.0, 0.0, 1.0);
+        assert_eq!(cholesky_semidefinite(&a), Err(NotPositiveDefinite { index: 1 }));
+    }
+}

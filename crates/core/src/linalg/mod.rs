@@ -1,0 +1,23 @@
+//! Allocation-free dense kernels on fixed-size matrices: checked Cholesky
+//! factorisations, checked rank-one updates and downdates, Householder
+//! triangularisation of a factor plus extra columns, triangular solves and
+//! the symmetric products the update forms need.
+//!
+//! Every factor here is **lower triangular** with a non-negative diagonal:
+//! `P = S Sᵀ`.
+
+mod cholesky;
+mod rank_one;
+mod symmetric;
+mod triangular;
+mod triangularize;
+
+pub use cholesky::{cholesky, cholesky_semidefinite, NotPositiveDefinite};
+pub use rank_one::{rank_one_downdate, rank_one_update, weighted_rank_one};
+pub use symmetric::{
+    add_weighted_outer_lower, joseph_expanded, mirror_lower, sandwich, sandwich_transposed,
+};
+pub use triangular::{solve_lower, solve_lower_transpose};
+pub use triangularize::add_columns;
+
+pub(crate) use rank_one::{downdate_in_place, update_in_place};

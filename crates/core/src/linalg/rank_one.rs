@@ -1,0 +1,219 @@
+use nalgebra::{SMatrix, SVector};
+
+use super::NotPositiveDefinite;
+use crate::real::epsilon;
+use crate::Real;
+
+/// `S Sᵀ ← S Sᵀ + v vᵀ` for a lower-triangular factor `S`, by Givens
+/// rotations. Works from a singular (even zero) factor.
+///
+/// Fails only on non-finite input; `s` is unchanged on failure.
+///
+/// ```
+/// use kestrel_core::linalg::rank_one_update;
+/// use kestrel_core::nalgebra::{Matrix2, Vector2};
+/// let mut s = Matrix2::new(1.0, 0.0, 0.0, 1.0);
+/// rank_one_update(&mut s, &Vector2::new(1.0, 0.0)).unwrap();
+/// assert!((s * s.transpose() - Matrix2::new(2.0, 0.0, 0.0, 1.0)).norm() < 1e-15);
+/// ```
+pub fn rank_one_update<T: Real, const N: usize>(
+    s: &mut SMatrix<T, N, N>,
+    v: &SVector<T, N>,
+) -> Result<(), NotPositiveDefinite> {
+    let mut work = *s;
+    let mut v = *v;
+    update_in_place(&mut work, &mut v).map_err(|index| NotPositiveDefinite { index })?;
+    *s = work;
+    Ok(())
+}
+
+/// `S Sᵀ ← S Sᵀ − v vᵀ` for a lower-triangular factor `S`, by hyperbolic
+/// rotations, **checked**: if the result would not be positive definite to
+/// working precision (a pivot `r² = S_kk² − v_k²` not above `ε·S_kk²`), the
+/// failing pivot is returned and `s` is left unchanged, instead of filling
+/// the factor with NaN.
+///
+/// ```
+/// use kestrel_core::linalg::rank_one_downdate;
+/// use kestrel_core::nalgebra::{Matrix2, Vector2};
+/// let mut s = Matrix2::new(2.0, 0.0, 0.0, 1.0);
+/// rank_one_downdate(&mut s, &Vector2::new(1.0, 0.0)).unwrap();
+/// assert!((s * s.transpose() - Matrix2::new(3.0, 0.0, 0.0, 1.0)).norm() < 1e-15);
+/// // Removing more than is there fails and leaves `s` alone.
+/// let err = rank_one_downdate(&mut s, &Vector2::new(0.0, 2.0)).unwrap_err();
+/// assert_eq!(err.index, 1);
+/// assert_eq!(s[(1, 1)], 1.0);
+/// ```
+pub fn rank_one_downdate<T: Real, const N: usize>(
+    s: &mut SMatrix<T, N, N>,
+    v: &SVector<T, N>,
+) -> Result<(), NotPositiveDefinite> {
+    let mut work = *s;
+    let mut v = *v;
+    downdate_in_place(&mut work, &mut v).map_err(|index| NotPositiveDefinite { index })?;
+    *s = work;
+    Ok(())
+}
+
+/// `S Sᵀ ← S Sᵀ + w v vᵀ`: an update for `w ≥ 0`, a checked downdate for
+/// `w < 0`. `s` is unchanged on failure.
+///
+/// ```
+/// use kestrel_core::linalg::weighted_rank_one;
+/// use kestrel_core::nalgebra::{Matrix1, Vector1};
+/// let mut s = Matrix1::new(3.0_f64);
+/// weighted_rank_one(&mut s, &Vector1::new(2.0), -1.25).unwrap();
+/// assert!((s[0] - 2.0).abs() < 1e-15);
+/// ```
+pub fn weighted_rank_one<T: Real, const N: usize>(
+    s: &mut SMatrix<T, N, N>,
+    v: &SVector<T, N>,
+    w: T,
+) -> Result<(), NotPositiveDefinite> {
+    let scaled = v * w.abs().sqrt();
+    if w >= T::zero() {
+        rank_one_update(s, &scaled)
+    } else {
+        rank_one_downdate(s, &scaled)
+    }
+}
+
+/// In-place Givens update; `v` is destroyed. On error (non-finite values)
+/// `s` is partly modified and must be discarded.
+pub(crate) fn update_in_place<T: Real, const N: usize>(
+    s: &mut SMatrix<T, N, N>,
+    v: &mut SVector<T, N>,
+) -> Result<(), usize> {
+    let s = s.as_mut_slice();
+    let v = v.as_mut_slice();
+    for k in 0..N {
+        let b = v[k];
+        if b == T::zero() {
+            continue;
+        }
+        let a = s[k * N + k];
+        let r = (a * a + b * b).sqrt();
+        if !r.is_finite() {
+            return Err(k);
+        }
+        let c = a / r;
+        let sn = b / r;
+        s[k * N + k] = r;
+        let col = &mut s[k * N + k + 1..k * N + N];
+        let rest = &mut v[k + 1..];
+        for (t, u) in col.iter_mut().zip(rest.iter_mut()) {
+            let (tv, uv) = (*t, *u);
+            *t = c * tv + sn * uv;
+            *u = c * uv - sn * tv;
+        }
+    }
+    Ok(())
+}
+
+/// In-place hyperbolic downdate; `v` is destroyed. On error `s` is partly
+/// modified and must be discarded.
+pub(crate) fn downdate_in_place<T: Real, const N: usize>(
+    s: &mut SMatrix<T, N, N>,
+    v: &mut SVector<T, N>,
+) -> Result<(), usize> {
+    let s = s.as_mut_slice();
+    let v = v.as_mut_slice();
+    let eps = epsilon::<T>();
+    for k in 0..N {
+        let b = v[k];
+        if b == T::zero() {
+            continue;
+        }
+        let a = s[k * N + k];
+        // (a − b)(a + b) keeps the difference accurate when |b| ≈ a.
+        let r2 = (a - b) * (a + b);
+        if !(r2 > eps * a * a) || !r2.is_finite() {
+            return Err(k);
+        }
+        let r = r2.sqrt();
+        let c = r / a;
+        let sn = b / a;
+        let inv_c = c.recip();
+        s[k * N + k] = r;
+        let col = &mut s[k * N + k + 1..k * N + N];
+        let rest = &mut v[k + 1..];
+        for (t, u) in col.iter_mut().zip(rest.iter_mut()) {
+            let tn = (*t - sn * *u) * inv_c;
+            *t = tn;
+            *u = c * *u - sn * tn;
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::linalg::cholesky;
+    use approx::assert_relative_eq;
+    use nalgebra::{Matrix3, Vector3};
+
+    fn spd() -> Matrix3<f64> {
+        let a = Matrix3::new(2.0, 0.3, -0.1, 0.5, 1.5, 0.2, -0.4, 0.1, 1.0);
+        a * a.transpose() + Matrix3::identity()
+    }
+
+    #[test]
+    fn update_matches_refactorisation() {
+        let p = spd();
+        let v = Vector3::new(0.7, -1.2, 0.4);
+        let mut s = cholesky(&p).unwrap();
+        rank_one_update(&mut s, &v).unwrap();
+        assert_relative_eq!(s, cholesky(&(p + v * v.transpose())).unwrap(), epsilon = 1e-13);
+    }
+
+    #[test]
+    fn downdate_matches_refactorisation() {
+        let p = spd();
+        let v = Vector3::new(0.3, -0.2, 0.25);
+        let mut s = cholesky(&p).unwrap();
+        rank_one_downdate(&mut s, &v).unwrap();
+        assert_relative_eq!(s, cholesky(&(p - v * v.transpose())).unwrap(), epsilon = 1e-13);
+    }
+
+    #[test]
+    fn update_from_zero_builds_a_factor() {
+        let mut s = Matrix3::zeros();
+        let vs = [
+            Vector3::new(1.0, 2.0, 3.0),
+            Vector3::new(0.0, 1.0, -1.0),
+            Vector3::new(2.0, 0.0, 1.0),
+        ];
+        let mut p = Matrix3::zeros();
+        for v in &vs {
+            rank_one_update(&mut s, v).unwrap();
+            p += v * v.transpose();
+        }
+        assert_relative_eq!(s * s.transpose(), p, epsilon = 1e-13);
+        assert!((0..3).all(|i| s[(i, i)] >= 0.0));
+    }
+
+    #[test]
+    fn failed_downdate_leaves_the_factor_alone_and_never_nan() {
+        let p = spd();
+        let s0 = cholesky(&p).unwrap();
+        let mut s = s0;
+        let big = Vector3::new(10.0, 0.0, 0.0);
+        assert!(rank_one_downdate(&mut s, &big).is_err());
+        assert_eq!(s, s0);
+        // Downdating exactly to singular is refused too.
+        let exact = s0.column(0).into_owned();
+        assert_eq!(rank_one_downdate(&mut s, &exact), Err(NotPositiveDefinite { index: 0 }));
+    }
+
+    #[test]
+    fn weighted_chooses_update_or_downdate() {
+        let p = spd();
+        let v = Vector3::new(0.1, 0.2, 0.3);
+        for w in [2.0, -0.5] {
+            let mut s = cholesky(&p).unwrap();
+            weighted_rank_one(&mut s, &v, w).unwrap();
+            assert_relative_eq!(s * s.transpose(), p + v * v.transpose() * w, epsilon = 1e-13);
+        }
+    }
+}

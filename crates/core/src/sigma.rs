@@ -1,0 +1,239 @@
+//! Merwe scaled sigma points and the unscented transforms the unscented
+//! forms share.
+//!
+//! For an `N`-state with covariance `P = S Sᵀ` the `2N + 1` points are
+//! `χ₀ = x`, `χ±ᵢ = x ⊞ ±η Sᵢ` (`Sᵢ` the i-th column of `S`), stored as a
+//! centre plus `N` (plus, minus) pairs so no `2N + 1` size is ever written.
+
+use nalgebra::{SMatrix, SVector};
+
+use crate::error::ensure_finite;
+use crate::linalg::{add_weighted_outer_lower, mirror_lower};
+use crate::real::lit;
+use crate::{FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace};
+
+/// The Merwe scaled sigma-point parameters `α` (spread), `β` (prior
+/// knowledge of the distribution, 2 for Gaussian) and `κ` (secondary
+/// scaling).
+///
+/// The default is `α = 1, β = 2, κ = 0`: spread `η = √N`, centre mean
+/// weight 0 and centre covariance weight 2, so no weight is negative and the
+/// square-root form never needs a downdate in its time update. The common
+/// textbook choice `α = 10⁻³` makes the centre covariance weight about
+/// `−10⁶`, which is exact in theory but costs accuracy in `f32`.
+///
+/// ```
+/// use kestrel_core::sigma::MerweParams;
+/// let w = MerweParams::<f64>::default().weights(4).unwrap();
+/// assert_eq!(w.spread, 2.0);
+/// assert_eq!(w.mean0, 0.0);
+/// assert_eq!(w.cov0, 2.0);
+/// assert_eq!(w.other, 0.125);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MerweParams<T: Real> {
+    /// Spread of the points around the mean, `0 < α ≤ 1`.
+    pub alpha: T,
+    /// Distribution parameter, `β = 2` is optimal for Gaussians.
+    pub beta: T,
+    /// Secondary scaling; `N + κ > 0` is required.
+    pub kappa: T,
+}
+
+impl<T: Real> Default for MerweParams<T> {
+    fn default() -> Self {
+        Self {
+            alpha: T::one(),
+            beta: lit(2.0),
+            kappa: T::zero(),
+        }
+    }
+}
+
+impl<T: Real> MerweParams<T> {
+    /// The parameters `(α, β, κ)`.
+    pub fn new(alpha: T, beta: T, kappa: T) -> Self {
+        Self { alpha, beta, kappa }
+    }
+
+    /// The weights for an `n`-dimensional state, or `None` if the
+    /// parameters are not finite, `α ≤ 0`, or `α²(n + κ) ≤ 0`.
+    pub fn weights(&self, n: usize) -> Option<SigmaWeights<T>> {
+        let n_t: T = lit(n as f64);
+        let a2 = self.alpha * self.alpha;
+        let scale = a2 * (n_t + self.kappa); // n + λ
+        if !(self.alpha > T::zero() && scale > T::zero() && scale.is_finite())
+            || !self.beta.is_finite()
+        {
+            return None;
+        }
+        let lambda = scale - n_t;
+        let mean0 = lambda / scale;
+        Some(SigmaWeights {
+            spread: scale.sqrt(),
+            mean0,
+            cov0: mean0 + T::one() - a2 + self.beta,
+            other: T::one() / (scale + scale),
+        })
+    }
+}
+
+/// The weights of a sigma-point set.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SigmaWeights<T: Real> {
+    /// `η = √(N + λ)`: the points sit at `x ± η Sᵢ`.
+    pub spread: T,
+    /// Mean weight of the centre point, `λ / (N + λ)`.
+    pub mean0: T,
+    /// Covariance weight of the centre point, `λ / (N + λ) + 1 − α² + β`.
+    pub cov0: T,
+    /// Mean and covariance weight of each other point, `1 / (2(N + λ))`.
+    pub other: T,
+}
+
+/// `N` pairs of `(plus, minus)` vectors of dimension `D`.
+pub(crate) type Pairs<T, const D: usize, const N: usize> = [[SVector<T, D>; 2]; N];
+
+/// Sigma points `x ⊞ ±η Sᵢ`.
+#[inline]
+pub(crate) fn points<T: Real, const N: usize, S: StateSpace<T, N>>(
+    x: &SVector<T, N>,
+    s: &SMatrix<T, N, N>,
+    spread: T,
+    space: &S,
+) -> Pairs<T, N, N> {
+    core::array::from_fn(|i| {
+        let d = s.column(i) * spread;
+        [space.add(x, &d), space.add(x, &-d)]
+    })
+}
+
+/// The unscented transform of the state through a process model.
+pub(crate) struct PropagatedSigma<T: Real, const N: usize> {
+    pub mean: SVector<T, N>,
+    /// Deviation of the propagated centre from the mean.
+    pub center: SVector<T, N>,
+    /// Deviations of the propagated pairs from the mean.
+    pub pairs: Pairs<T, N, N>,
+}
+
+impl<T: Real, const N: usize> PropagatedSigma<T, N> {
+    /// `Σ Wc dⱼ dⱼᵀ`.
+    pub fn covariance(&self, w: &SigmaWeights<T>) -> SMatrix<T, N, N> {
+        let mut p = SMatrix::zeros();
+        add_weighted_outer_lower(&mut p, w.cov0, &self.center);
+        for pair in &self.pairs {
+            add_weighted_outer_lower(&mut p, w.other, &pair[0]);
+            add_weighted_outer_lower(&mut p, w.other, &pair[1]);
+        }
+        mirror_lower(&mut p);
+        p
+    }
+}
+
+pub(crate) fn propagate<T, const N: usize, P, S>(
+    x: &SVector<T, N>,
+    s: &SMatrix<T, N, N>,
+    w: &SigmaWeights<T>,
+    model: &P,
+    dt: T,
+    space: &S,
+) -> Result<PropagatedSigma<T, N>, FilterError>
+where
+    T: Real,
+    P: ProcessModel<T, N>,
+    S: StateSpace<T, N>,
+{
+    let chi = points(x, s, w.spread, space);
+    let y0 = model.propagate(x, dt);
+    ensure_finite(y0.as_slice(), Quantity::Propagation)?;
+    let mut ys = chi;
+    for pair in ys.iter_mut() {
+        for v in pair.iter_mut() {
+            *v = model.propagate(v, dt);
+            ensure_finite(v.as_slice(), Quantity::Propagation)?;
+        }
+    }
+    let mut acc = SVector::<T, N>::zeros();
+    for pair in &ys {
+        acc += space.difference(&pair[0], &y0) + space.difference(&pair[1], &y0);
+    }
+    let mean = space.add(&y0, &(acc * w.other));
+    let center = space.difference(&y0, &mean);
+    for pair in ys.iter_mut() {
+        for v in pair.iter_mut() {
+            *v = space.difference(v, &mean);
+        }
+    }
+    Ok(PropagatedSigma {
+        mean,
+        center,
+        pairs: ys,
+    })
+}
+
+/// The unscented transform of the state through a measurement model.
+pub(crate) struct MeasuredSigma<T: Real, const N: usize, const M: usize> {
+    pub z_hat: SVector<T, M>,
+    pub center: SVector<T, M>,
+    pub pairs: Pairs<T, M, N>,
+    /// `P_xz = Σ Wc (χⱼ ⊟ x)(Zⱼ ⊟ ẑ)ᵀ`.
+    pub cross: SMatrix<T, N, M>,
+}
+
+impl<T: Real, const N: usize, const M: usize> MeasuredSigma<T, N, M> {
+    /// `P_zz = Σ Wc dzⱼ dzⱼᵀ` (without `R`).
+    pub fn covariance(&self, w: &SigmaWeights<T>) -> SMatrix<T, M, M> {
+        let mut p = SMatrix::zeros();
+        add_weighted_outer_lower(&mut p, w.cov0, &self.center);
+        for pair in &self.pairs {
+            add_weighted_outer_lower(&mut p, w.other, &pair[0]);
+            add_weighted_outer_lower(&mut p, w.other, &pair[1]);
+        }
+        mirror_lower(&mut p);
+        p
+    }
+}
+
+pub(crate) fn measure<T, const N: usize, const M: usize, H, S>(
+    x: &SVector<T, N>,
+    s: &SMatrix<T, N, N>,
+    w: &SigmaWeights<T>,
+    model: &H,
+    space: &S,
+) -> Result<MeasuredSigma<T, N, M>, FilterError>
+where
+    T: Real,
+    H: MeasurementModel<T, N, M>,
+    S: StateSpace<T, N>,
+{
+    let chi = points(x, s, w.spread, space);
+    let z0 = model.predict(x);
+    ensure_finite(z0.as_slice(), Quantity::PredictedMeasurement)?;
+    let mut zs: Pairs<T, M, N> = [[SVector::zeros(); 2]; N];
+    let mut acc = SVector::<T, M>::zeros();
+    for (zp, cp) in zs.iter_mut().zip(&chi) {
+        for (zv, cv) in zp.iter_mut().zip(cp) {
+            *zv = model.predict(cv);
+            ensure_finite(zv.as_slice(), Quantity::PredictedMeasurement)?;
+            acc += model.residual(zv, &z0);
+        }
+    }
+    let z_hat = z0 + acc * w.other;
+    let center = model.residual(&z0, &z_hat);
+    let mut cross = SMatrix::<T, N, M>::zeros();
+    for (zp, cp) in zs.iter_mut().zip(&chi) {
+        for (zv, cv) in zp.iter_mut().zip(cp) {
+            *zv = model.residual(zv, &z_hat);
+            let dx = space.difference(cv, x);
+            cross += dx * (zv.transpose() * w.other);
+        }
+    }
+    // The centre's state deviation is zero, so it adds nothing to P_xz.
+    Ok(MeasuredSigma {
+        z_hat,
+        center,
+        pairs: zs,
+        cross,
+    })
+}
