@@ -15,8 +15,8 @@ pub struct UpdateReport<T: Real, const M: usize, R = ()> {
     pub innovation: SVector<T, M>,
     /// The innovation the gain was applied to (after compression or scaling).
     pub innovation_used: SVector<T, M>,
-    /// The innovation covariance `C = H P⁻ Hᵀ + R` from the models alone,
-    /// before any adapter.
+    /// The innovation covariance `C = H P⁻ Hᵀ + R` from the models, before
+    /// the adapters' `before_gain` (`P⁻` includes an after-predict fade).
     pub nominal_innovation_covariance: SMatrix<T, M, M>,
     /// The innovation covariance the gain used (with any fade or new `R`).
     pub innovation_covariance: SMatrix<T, M, M>,

@@ -62,9 +62,11 @@ impl<T: Real> MerweParams<T> {
         let n_t: T = lit(n as f64);
         let a2 = self.alpha * self.alpha;
         let scale = a2 * (n_t + self.kappa); // n + λ
-        if !(self.alpha > T::zero() && scale > T::zero() && scale.is_finite())
-            || !self.beta.is_finite()
-        {
+        let valid = self.alpha > T::zero()
+            && scale > T::zero()
+            && scale.is_finite()
+            && self.beta.is_finite();
+        if !valid {
             return None;
         }
         let lambda = scale - n_t;

@@ -1,7 +1,9 @@
 //! Linear time-invariant models given directly by their matrices.
 
 use kestrel_core::nalgebra::{SMatrix, SVector};
-use kestrel_core::{LinearizedMeasurement, LinearizedProcess, MeasurementModel, ProcessModel, Real};
+use kestrel_core::{
+    LinearizedMeasurement, LinearizedProcess, MeasurementModel, ProcessModel, Real,
+};
 
 /// `x⁻ = Φ x` with discrete process noise `Q`, independent of the time step
 /// (the matrices are for the filter's fixed step).

@@ -177,9 +177,10 @@ impl<T: Real, const M: usize> GainStep<T, M> {
     /// Scales the propagated covariance by `lambda` (cumulative), i.e.
     /// `P⁻ = λ Φ P Φᵀ + Q`. Non-finite or non-positive values are ignored.
     ///
-    /// Without the split (the adapter did not set `NEEDS_SPLIT`) the form still
-    /// fades exactly, but this view can only approximate `C` by fading all of
-    /// `H P⁻ Hᵀ`.
+    /// Without the split (the adapter did not set `NEEDS_SPLIT`) this view can
+    /// only approximate `C` by fading all of `H P⁻ Hᵀ`. The covariance and
+    /// unscented forms still fade only the propagated part; the square-root
+    /// form, whose factor then already holds `Q`, fades all of `P⁻`.
     pub fn fade(&mut self, lambda: T) {
         if !(lambda.is_finite() && lambda > T::zero()) || lambda == T::one() {
             return;

@@ -194,7 +194,9 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         let hp = h * prior;
         let hph = sandwich_transposed(&hp, &h);
         let split = A::NEEDS_SPLIT.then(|| self.split(&h, &hph));
-        let step = GainStep::new(nu, hph, split, r).ok_or(not_pd(0))?;
+        // Factor here rather than in `GainStep::new` to report the failing pivot.
+        let c_factor = cholesky(&(hph + r)).map_err(|e| not_pd(e.index))?;
+        let step = GainStep::with_factor(nu, hph, split, r, c_factor);
         let mut done = adapt(adapter, step);
         let fade = done.step.fade_factor();
         if done.step.is_rejected() {

@@ -55,6 +55,8 @@ pub struct SquareRootForm<T: Real, const N: usize> {
     /// Factor of the pending process noise.
     sq: SMatrix<T, N, N>,
     fade: T,
+    /// The after-predict fade already folded into `s`, for the report.
+    predict_fade: T,
     pending: bool,
     params: MerweParams<T>,
     weights: SigmaWeights<T>,
@@ -73,6 +75,7 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
             s: SMatrix::zeros(),
             sq: SMatrix::zeros(),
             fade: T::one(),
+            predict_fade: T::one(),
             pending: false,
             params,
             weights,
@@ -136,6 +139,7 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
         self.s = s;
         self.sq = SMatrix::zeros();
         self.fade = T::one();
+        self.predict_fade = T::one();
         self.pending = false;
     }
 
@@ -244,6 +248,7 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Sq
         } else {
             self.commit(factor);
         }
+        self.predict_fade = lambda;
         Ok(())
     }
 }
@@ -326,7 +331,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         ensure_finite(s_new.as_slice(), Quantity::UpdatedEstimate)?;
 
         *x = x_new;
-        let total_fade = if self.pending { self.fade * fade } else { fade };
+        let total_fade = self.predict_fade * if self.pending { self.fade * fade } else { fade };
         self.commit(s_new);
         let predicted = c - r_used;
         adapter.after_update(

@@ -186,7 +186,9 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
                 _ => (pzz, SMatrix::zeros()),
             }
         });
-        let step = GainStep::new(nu, pzz, split, r).ok_or(not_pd(0))?;
+        // Factor here rather than in `GainStep::new` to report the failing pivot.
+        let c_factor = cholesky(&(pzz + r)).map_err(|e| not_pd(e.index))?;
+        let step = GainStep::with_factor(nu, pzz, split, r, c_factor);
         let mut done = adapt(adapter, step);
         let fade = done.step.fade_factor();
         if done.step.is_rejected() {

@@ -127,7 +127,8 @@ pub(crate) fn downdate_in_place<T: Real, const N: usize>(
         let a = s[k * N + k];
         // (a − b)(a + b) keeps the difference accurate when |b| ≈ a.
         let r2 = (a - b) * (a + b);
-        if !(r2 > eps * a * a) || !r2.is_finite() {
+        let positive = r2 > eps * a * a && r2.is_finite();
+        if !positive {
             return Err(k);
         }
         let r = r2.sqrt();

@@ -1,0 +1,8 @@
+//! Shared pieces of the step benchmarks: a deterministic random linear model
+//! and the two baselines (a hand-written nalgebra Kalman filter and the
+//! `adskalman` crate).
+
+pub mod adskalman_kf;
+pub mod hand;
+pub mod model;
+pub mod rng;
