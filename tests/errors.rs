@@ -412,15 +412,15 @@ fn singular_innovation_covariance() {
     let want = not_pd(Quantity::InnovationCovariance, 1);
     update_fails("ukf", &mut f, &half_exact, &z2, want);
 
-    // The square-root form factors R itself, so a singular R is refused as
-    // such, before the innovation covariance is formed.
+    // The square-root form accepts a singular R (its factor starts from a
+    // semi-definite chol R) and refuses the singular innovation factor.
     let mut f = SrUkf::new(X0, zero_first).unwrap();
     f.predict(&second_only(), 1.0).unwrap();
-    let want = not_pd(Quantity::MeasurementNoise, 0);
+    let want = not_pd(Quantity::InnovationCovariance, 0);
     update_fails("sr-ukf", &mut f, &exact, &z1, want);
     let mut f = SrUkf::new(X0, zero_second).unwrap();
     f.predict(&first_noise, 1.0).unwrap();
-    let want = not_pd(Quantity::MeasurementNoise, 1);
+    let want = not_pd(Quantity::InnovationCovariance, 1);
     update_fails("sr-ukf", &mut f, &half_exact, &z2, want);
 }
 

@@ -218,8 +218,16 @@ fn unscented_is_kalman<const N: usize, const M: usize>(draw: Draw) -> Result<(),
         ukf.predict(&case.process, 1.0).expect("predict");
         sr.predict(&case.process, 1.0).expect("predict");
         let reference = (kf.state(), &kf.covariance());
-        check_equal((ukf.state(), &ukf.covariance()), reference, &format!("UKF prior {k}"))?;
-        check_equal((sr.state(), &sr.covariance()), reference, &format!("SR-UKF prior {k}"))?;
+        check_equal(
+            (ukf.state(), &ukf.covariance()),
+            reference,
+            &format!("UKF prior {k}"),
+        )?;
+        check_equal(
+            (sr.state(), &sr.covariance()),
+            reference,
+            &format!("SR-UKF prior {k}"),
+        )?;
 
         let report = kf.update(&case.measurement, z);
         prop_assert!(report.is_ok(), "KF update {k}: {report:?}");
@@ -228,8 +236,16 @@ fn unscented_is_kalman<const N: usize, const M: usize>(draw: Draw) -> Result<(),
         let report = sr.update(&case.measurement, z);
         prop_assert!(report.is_ok(), "SR-UKF update {k}: {report:?}");
         let reference = (kf.state(), &kf.covariance());
-        check_equal((ukf.state(), &ukf.covariance()), reference, &format!("UKF posterior {k}"))?;
-        check_equal((sr.state(), &sr.covariance()), reference, &format!("SR-UKF posterior {k}"))?;
+        check_equal(
+            (ukf.state(), &ukf.covariance()),
+            reference,
+            &format!("UKF posterior {k}"),
+        )?;
+        check_equal(
+            (sr.state(), &sr.covariance()),
+            reference,
+            &format!("SR-UKF posterior {k}"),
+        )?;
     }
     Ok(())
 }
@@ -274,4 +290,15 @@ fn random_transitions_are_stable() {
 fn radius<const N: usize, const M: usize>(seed: u64) -> f64 {
     let case: LinearCase<N, M> = common::linear_case(seed, 0, false);
     common::spectral_radius_bound(&case.process.transition)
+}
+
+#[test]
+fn jacobi_eigenvalues_match_a_known_spectrum() {
+    let mut rng = common::rng(11);
+    let u = common::orthogonal::<6>(&mut rng);
+    let d = SVector::<f64, 6>::from([-2.0, 1e-9, 0.5, 1.0, 3.0, 1e3]);
+    let p = common::symmetrize(u * SMatrix::from_diagonal(&d) * u.transpose());
+    let got = common::eigenvalues(&p);
+    assert!((got - d).norm() <= 1e-12 * 1e3, "{got} vs {d}");
+    assert!((common::min_eigenvalue(&p) + 2.0).abs() <= 1e-12 * 1e3);
 }

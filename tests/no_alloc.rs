@@ -131,6 +131,35 @@ impl<T: Real, const M: usize> NoiseAdapter<T, M> for Tuner<T> {
     }
 }
 
+/// An adapter that allocates in every hook: the positive control for the
+/// filter runs.
+struct Leaky;
+
+impl<T: Real> PriorAdapter<T> for Leaky {
+    fn after_predict(&mut self, _prior: &mut PriorStep<T>) {
+        drop(black_box(Vec::<u8>::with_capacity(8)));
+    }
+}
+
+impl<T: Real, const M: usize> NoiseAdapter<T, M> for Leaky {
+    type Report = ();
+    fn before_gain(&mut self, _step: &mut GainStep<T, M>, _report: &mut ()) {
+        drop(black_box(Vec::<u8>::with_capacity(8)));
+    }
+}
+
+#[test]
+fn positive_control_counts_allocations_made_inside_a_filter_step() {
+    let mut ukf = Ukf::<f64, 4>::new(x0(), p0())
+        .expect("finite")
+        .with_adapter(Leaky);
+    let (outcome, calls) = armed_run(&mut ukf);
+    assert_eq!(outcome.accepted, 30);
+    // 30 predicts and 30 updates, each hook allocating and freeing once; the
+    // NaN inputs are refused before any hook runs.
+    assert_eq!(calls, 2 * 60);
+}
+
 /// A 4-state constant-velocity model observed in position, diagonal `R`.
 fn models<T: Real>() -> (LinearProcess<T, 4>, LinearMeasurement<T, 4, 2>) {
     let phi = Matrix4::new(
@@ -201,12 +230,17 @@ fn p0<T: Real>() -> Matrix4<T> {
 }
 
 fn sr_ukf<T: Real>(method: TimeUpdate) -> SrUkf<T, 4> {
-    let form = SquareRootForm::new(&p0()).expect("PSD").with_time_update(method);
+    let form = SquareRootForm::new(&p0())
+        .expect("PSD")
+        .with_time_update(method);
     SrUkf::with_form(x0(), form).expect("finite")
 }
 
 fn tuple<T: Real>() -> (Tuner<T>, Tuner<T>) {
-    (Tuner::new(1.01, 1.02, 1.5, 0.9), Tuner::new(1.0, 1.0, 0.8, 1.0))
+    (
+        Tuner::new(1.01, 1.02, 1.5, 0.9),
+        Tuner::new(1.0, 1.0, 0.8, 1.0),
+    )
 }
 
 /// Asserts a run made no heap call, accepted every step (`sequential` of

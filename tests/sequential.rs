@@ -36,7 +36,12 @@ fn assert_same<const N: usize, const M: usize>(
     let dc = common::relative_difference(&seq_report.innovation_covariance, &c_ref);
     assert!(dc <= TOL, "{what}: innovation covariance differs by {dc:e}");
     let dn = (seq_report.nis - batch_report.nis).abs() / batch_report.nis;
-    assert!(dn <= TOL, "{what}: NIS {} vs {}", seq_report.nis, batch_report.nis);
+    assert!(
+        dn <= TOL,
+        "{what}: NIS {} vs {}",
+        seq_report.nis,
+        batch_report.nis
+    );
     assert_eq!(seq_report.innovation, batch_report.innovation, "{what}");
 }
 
@@ -75,18 +80,15 @@ struct RangeBearingRate {
 impl MeasurementModel<f64, 4, 3> for RangeBearingRate {
     fn predict(&self, x: &Vector4<f64>) -> Vector3<f64> {
         let range = x[0].hypot(x[1]);
-        Vector3::new(
-            range,
-            x[1].atan2(x[0]),
-            (x[0] * x[2] + x[1] * x[3]) / range,
-        )
+        Vector3::new(range, x[1].atan2(x[0]), (x[0] * x[2] + x[1] * x[3]) / range)
     }
     fn noise(&self) -> Matrix3<f64> {
         self.noise
     }
     fn residual(&self, z: &Vector3<f64>, predicted: &Vector3<f64>) -> Vector3<f64> {
         let mut d = z - predicted;
-        d[1] = (d[1] + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
+        d[1] =
+            (d[1] + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
         d
     }
 }
@@ -151,18 +153,26 @@ fn sequential_equals_batch_on_a_nonlinear_ekf() {
     for k in 0..120 {
         truth = phi * truth + lq * noise::<4>(&mut rng);
         let mut z = sensor.predict(&truth) + lr * noise::<3>(&mut rng);
-        z[1] = (z[1] + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
+        z[1] =
+            (z[1] + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
 
         seq.predict(&process, dt).expect("predict");
         batch.set_state(*seq.state()).expect("finite");
         batch.set_covariance(&seq.covariance()).expect("finite");
         let seq_report = seq.update(&sensor, &z).expect("update");
         let batch_report = batch.update(&sensor, &z).expect("update");
-        assert_same((&seq, &seq_report), (&batch, &batch_report), &format!("step {k}"));
+        assert_same(
+            (&seq, &seq_report),
+            (&batch, &batch_report),
+            &format!("step {k}"),
+        );
         min_bearing = min_bearing.min(z[1]);
         max_bearing = max_bearing.max(z[1]);
     }
-    assert!(min_bearing < -3.0 && max_bearing > 3.0, "the bearing never wrapped");
+    assert!(
+        min_bearing < -3.0 && max_bearing > 3.0,
+        "the bearing never wrapped"
+    );
 }
 
 fn noise<const D: usize>(rng: &mut rand_chacha::ChaCha8Rng) -> SVector<f64, D> {

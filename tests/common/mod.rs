@@ -236,6 +236,7 @@ pub fn cholesky_succeeds<const N: usize>(p: &SMatrix<f64, N, N>) -> bool {
 
 /// The `(N, M)` pairs the size dispatch knows, fed to a callback macro rule.
 /// Every `N` from 2 to 24 appears; `M ≤ min(N, 6)` varies along the list.
+#[allow(unused_macros)]
 macro_rules! size_table {
     (@with $($callback:tt)*) => {
         $crate::common::size_table!($($callback)* [
@@ -254,15 +255,18 @@ macro_rules! size_table {
         }
     };
 }
+#[allow(unused_imports)]
 pub(crate) use size_table;
 
 /// The `(N, M)` pairs [`dispatch`] accepts.
 pub const SIZES: &[(usize, usize)] = size_table!(@with @list);
 
 /// Calls `run::<N, M>(args…)` for a run-time size `(n, m)` from [`SIZES`].
+#[allow(unused_macros)]
 macro_rules! dispatch {
     ($size:expr, $run:ident ($($arg:expr),* $(,)?)) => {
         $crate::common::size_table!(@with @match $size $run ($($arg),*))
     };
 }
+#[allow(unused_imports)]
 pub(crate) use dispatch;

@@ -6,8 +6,8 @@ use super::{Form, PredictForm, UpdateForm};
 use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::error::ensure_finite;
 use crate::linalg::{
-    add_columns, cholesky, cholesky_semidefinite, downdate_in_place, mirror_lower,
-    solve_lower, solve_lower_transpose, update_in_place, weighted_rank_one,
+    add_columns, cholesky_semidefinite, downdate_in_place, mirror_lower, solve_lower,
+    solve_lower_transpose, update_in_place, weighted_rank_one,
 };
 use crate::sigma::{self, MeasuredSigma, MerweParams, Pairs, SigmaWeights};
 use crate::{FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace, UpdateReport};
@@ -172,7 +172,8 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
         measured: &MeasuredSigma<T, N, M>,
         r: &SMatrix<T, M, M>,
     ) -> Result<SMatrix<T, M, M>, FilterError> {
-        let mut sz = cholesky(r).map_err(|e| FilterError::NotPositiveDefinite {
+        // R may be singular (a perfect measurement) as long as C is not.
+        let mut sz = cholesky_semidefinite(r).map_err(|e| FilterError::NotPositiveDefinite {
             what: Quantity::MeasurementNoise,
             index: e.index,
         })?;
@@ -180,6 +181,17 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
         Self::fold(self.time_update, &mut sz, &mut pairs, self.weights.other.sqrt());
         weighted_rank_one(&mut sz, &measured.center, self.weights.cov0)
             .map_err(|e| not_pd(e.index))?;
+        // The same singularity test as `cholesky`: a pivot at or below
+        // `M·ε` of its column's scale means C is singular to working precision.
+        let tol = crate::real::epsilon::<T>() * crate::real::lit::<T>(M as f64);
+        for i in 0..M {
+            let d = sz[(i, i)];
+            let scale = sz.row(i).norm();
+            let regular = d.is_finite() && d > T::zero() && d * d > tol * scale * scale;
+            if !regular {
+                return Err(not_pd(i));
+            }
+        }
         Ok(sz)
     }
 }
