@@ -110,6 +110,21 @@ pub(crate) fn points<T: Real, const N: usize, S: StateSpace<T, N>>(
     })
 }
 
+/// `Wc₀ d₀ d₀ᵀ + W Σᵢ (d₊ᵢ d₊ᵢᵀ + d₋ᵢ d₋ᵢᵀ)`, one triangle, mirrored.
+fn weighted_covariance<T: Real, const D: usize, const N: usize>(
+    center: &SVector<T, D>,
+    pairs: &Pairs<T, D, N>,
+    w: &SigmaWeights<T>,
+) -> SMatrix<T, D, D> {
+    let mut p = SMatrix::zeros();
+    add_weighted_outer_lower(&mut p, w.cov0, center);
+    for d in pairs.as_flattened() {
+        add_weighted_outer_lower(&mut p, w.other, d);
+    }
+    mirror_lower(&mut p);
+    p
+}
+
 /// The unscented transform of the state through a process model.
 pub(crate) struct PropagatedSigma<T: Real, const N: usize> {
     pub mean: SVector<T, N>,
@@ -122,14 +137,7 @@ pub(crate) struct PropagatedSigma<T: Real, const N: usize> {
 impl<T: Real, const N: usize> PropagatedSigma<T, N> {
     /// `Σ Wc dⱼ dⱼᵀ`.
     pub fn covariance(&self, w: &SigmaWeights<T>) -> SMatrix<T, N, N> {
-        let mut p = SMatrix::zeros();
-        add_weighted_outer_lower(&mut p, w.cov0, &self.center);
-        for pair in &self.pairs {
-            add_weighted_outer_lower(&mut p, w.other, &pair[0]);
-            add_weighted_outer_lower(&mut p, w.other, &pair[1]);
-        }
-        mirror_lower(&mut p);
-        p
+        weighted_covariance(&self.center, &self.pairs, w)
     }
 }
 
@@ -186,14 +194,7 @@ pub(crate) struct MeasuredSigma<T: Real, const N: usize, const M: usize> {
 impl<T: Real, const N: usize, const M: usize> MeasuredSigma<T, N, M> {
     /// `P_zz = Σ Wc dzⱼ dzⱼᵀ` (without `R`).
     pub fn covariance(&self, w: &SigmaWeights<T>) -> SMatrix<T, M, M> {
-        let mut p = SMatrix::zeros();
-        add_weighted_outer_lower(&mut p, w.cov0, &self.center);
-        for pair in &self.pairs {
-            add_weighted_outer_lower(&mut p, w.other, &pair[0]);
-            add_weighted_outer_lower(&mut p, w.other, &pair[1]);
-        }
-        mirror_lower(&mut p);
-        p
+        weighted_covariance(&self.center, &self.pairs, w)
     }
 }
 

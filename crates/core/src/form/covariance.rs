@@ -1,12 +1,12 @@
 use nalgebra::{SMatrix, SVector};
 
-use super::outcome::{adapt, not_pd};
+use super::outcome::{adapt, joseph_gain, not_pd};
+use super::pending::PendingCovariance;
 use super::{sequential, Form, PredictForm, UpdateForm};
 use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::error::ensure_finite;
 use crate::linalg::{
-    cholesky, joseph_expanded, mirror_lower, sandwich, sandwich_transposed, solve_lower,
-    solve_lower_transpose,
+    cholesky, mirror_lower, sandwich, sandwich_transposed,
 };
 use crate::{
     FilterError, LinearizedMeasurement, LinearizedProcess, Quantity, Real, StateSpace,
@@ -15,7 +15,7 @@ use crate::{
 
 /// The covariance form (Kalman filter, extended Kalman filter): stores `P`,
 /// predicts `P⁻ = λ Φ P Φᵀ + Q` and updates with the Joseph form, expanded
-/// to `O(N²M)` products (see [`joseph_expanded`]). Requires
+/// to `O(N²M)` products (see [`joseph_expanded`](crate::linalg::joseph_expanded)). Requires
 /// [`LinearizedProcess`] and [`LinearizedMeasurement`] models.
 ///
 /// When the filter has no adapter and `R` is diagonal, the update processes
@@ -31,14 +31,7 @@ use crate::{
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct CovarianceForm<T: Real, const N: usize> {
-    /// The posterior covariance, or the propagated part `Φ P Φᵀ` while a
-    /// prediction is pending.
-    p: SMatrix<T, N, N>,
-    /// The pending process noise.
-    q: SMatrix<T, N, N>,
-    /// The pending fade of `p` from the after-predict hook.
-    fade: T,
-    pending: bool,
+    cov: PendingCovariance<T, N>,
     sequential: bool,
 }
 
@@ -46,10 +39,7 @@ impl<T: Real, const N: usize> CovarianceForm<T, N> {
     /// A form holding covariance `p0` (the lower triangle is used).
     pub fn new(p0: &SMatrix<T, N, N>) -> Result<Self, FilterError> {
         let mut form = Self {
-            p: SMatrix::zeros(),
-            q: SMatrix::zeros(),
-            fade: T::one(),
-            pending: false,
+            cov: PendingCovariance::new(SMatrix::zeros()),
             sequential: true,
         };
         form.set_covariance(p0)?;
@@ -66,49 +56,18 @@ impl<T: Real, const N: usize> CovarianceForm<T, N> {
     pub fn sequential(&self) -> bool {
         self.sequential
     }
-
-    /// `λ_total Φ P Φᵀ + Q` for an extra fade `extra` on top of the pending one.
-    fn prior(&self, extra: T) -> SMatrix<T, N, N> {
-        if self.pending {
-            self.p * (self.fade * extra) + self.q
-        } else if extra == T::one() {
-            self.p
-        } else {
-            self.p * extra
-        }
-    }
-
-    fn commit(&mut self, p: SMatrix<T, N, N>) {
-        self.p = p;
-        self.q = SMatrix::zeros();
-        self.fade = T::one();
-        self.pending = false;
-    }
-
-    /// `(H Φ P Φᵀ Hᵀ, H Q Hᵀ)` at the pending fade.
-    fn split<const M: usize>(
-        &self,
-        h: &SMatrix<T, M, N>,
-        predicted: &SMatrix<T, M, M>,
-    ) -> (SMatrix<T, M, M>, SMatrix<T, M, M>) {
-        if self.pending {
-            (sandwich(h, &self.p) * self.fade, sandwich(h, &self.q))
-        } else {
-            (*predicted, SMatrix::zeros())
-        }
-    }
 }
 
 impl<T: Real, const N: usize> Form<T, N> for CovarianceForm<T, N> {
     fn covariance(&self) -> SMatrix<T, N, N> {
-        self.prior(T::one())
+        self.cov.prior(T::one())
     }
 
     fn set_covariance(&mut self, p: &SMatrix<T, N, N>) -> Result<(), FilterError> {
         ensure_finite(p.as_slice(), Quantity::StateCovariance)?;
         let mut p = *p;
         mirror_lower(&mut p);
-        self.commit(p);
+        self.cov.commit(p);
         Ok(())
     }
 }
@@ -131,16 +90,13 @@ impl<T: Real, const N: usize, P: LinearizedProcess<T, N>> PredictForm<T, N, P>
         mirror_lower(&mut q);
         let x_new = model.propagate(x, dt);
         ensure_finite(x_new.as_slice(), Quantity::Propagation)?;
-        let propagated = sandwich(&phi, &self.prior(T::one()));
+        let propagated = sandwich(&phi, &self.cov.prior(T::one()));
         ensure_finite(propagated.as_slice(), Quantity::StateCovariance)?;
 
         let mut step = PriorStep::new(dt);
         adapter.after_predict(&mut step);
         *x = x_new;
-        self.p = propagated;
-        self.q = q;
-        self.fade = step.fade_factor();
-        self.pending = true;
+        self.cov.predicted(propagated, q, step.fade_factor());
         Ok(())
     }
 }
@@ -166,7 +122,7 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         mirror_lower(&mut r);
         let nu = model.residual(z, &z_hat);
         ensure_finite(nu.as_slice(), Quantity::Measurement)?;
-        let prior = self.prior(T::one());
+        let prior = self.cov.prior(T::one());
 
         if A::IS_IDENTITY && self.sequential && sequential::is_diagonal(&r) {
             let out = sequential::update(&prior, &h, &r, &nu)?;
@@ -174,7 +130,7 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             ensure_finite(x_new.as_slice(), Quantity::UpdatedEstimate)?;
             ensure_finite(out.covariance.as_slice(), Quantity::UpdatedEstimate)?;
             *x = x_new;
-            self.commit(out.covariance);
+            self.cov.commit(out.covariance);
             return Ok(UpdateReport {
                 innovation: nu,
                 innovation_used: nu,
@@ -193,21 +149,21 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         // H P⁻ (= (P⁻ Hᵀ)ᵀ) and H P⁻ Hᵀ, one triangle.
         let hp = h * prior;
         let hph = sandwich_transposed(&hp, &h);
-        let split = A::NEEDS_SPLIT.then(|| self.split(&h, &hph));
+        let split = A::NEEDS_SPLIT.then(|| self.cov.split(Some(&h), &hph));
         // Factor here rather than in `GainStep::new` to report the failing pivot.
         let c_factor = cholesky(&(hph + r)).map_err(|e| not_pd(e.index))?;
         let step = GainStep::with_factor(nu, hph, split, r, c_factor);
         let mut done = adapt(adapter, step);
         let fade = done.step.fade_factor();
         if done.step.is_rejected() {
-            self.commit(prior);
+            self.cov.commit(prior);
             return Ok(done.rejected(nu));
         }
 
         let (prior, hp, hph) = if fade == T::one() {
             (prior, hp, hph)
         } else {
-            let prior = self.prior(fade);
+            let prior = self.cov.prior(fade);
             let hp = h * prior;
             let hph = sandwich_transposed(&hp, &h);
             (prior, hp, hph)
@@ -217,24 +173,17 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         ensure_finite(r_used.as_slice(), Quantity::MeasurementNoise)?;
         ensure_finite(nu_used.as_slice(), Quantity::Measurement)?;
         let c = hph + r_used;
-        let l = cholesky(&c).map_err(|e| not_pd(e.index))?;
-        // Kᵀ = C⁻¹ H P⁻ by two triangular solves.
-        let mut kt = hp;
-        solve_lower(&l, &mut kt);
-        solve_lower_transpose(&l, &mut kt);
-        let k = kt.transpose();
-        let x_new = space.add(x, &(k * nu_used));
-        let p_new = joseph_expanded(&prior, &k, &hp.transpose(), &c);
+        let gain = joseph_gain(&prior, &hp, &c)?;
+        let x_new = space.add(x, &(gain.k * nu_used));
         ensure_finite(x_new.as_slice(), Quantity::UpdatedEstimate)?;
-        ensure_finite(p_new.as_slice(), Quantity::UpdatedEstimate)?;
 
         *x = x_new;
-        let total_fade = if self.pending { self.fade * fade } else { fade };
-        self.commit(p_new);
+        let total_fade = self.cov.total_fade(fade);
+        self.cov.commit(gain.covariance);
         adapter.after_update(
-            &Posterior::new(&nu_used, &hph, &r_used, &l),
+            &Posterior::new(&nu_used, &hph, &r_used, &gain.factor),
             &mut done.adapters,
         );
-        Ok(done.accepted(nu, c, &l, total_fade))
+        Ok(done.accepted(nu, c, &gain.factor, total_fade))
     }
 }

@@ -5,6 +5,7 @@
 
 mod covariance;
 mod outcome;
+mod pending;
 mod sequential;
 mod square_root;
 mod unscented;

@@ -4,8 +4,41 @@
 use nalgebra::{SMatrix, SVector};
 
 use crate::adapter::{GainStep, NoiseAdapter};
-use crate::linalg::solve_lower;
+use crate::error::ensure_finite;
+use crate::linalg::{cholesky, joseph_expanded, solve_lower, solve_lower_transpose};
 use crate::{FilterError, Quantity, Real, UpdateReport};
+
+/// The gain and covariance of a Kalman update.
+pub(crate) struct Gain<T: Real, const N: usize, const M: usize> {
+    /// `K = B C⁻¹`.
+    pub k: SMatrix<T, N, M>,
+    /// The updated covariance.
+    pub covariance: SMatrix<T, N, N>,
+    /// Lower Cholesky factor of `C`.
+    pub factor: SMatrix<T, M, M>,
+}
+
+/// The gain `K = B C⁻¹` (two triangular solves on `Bᵀ`) and the expanded
+/// Joseph update of `prior`, for the cross covariance `B = P⁻ Hᵀ` (or `P_xz`),
+/// given transposed, and the innovation covariance `c`.
+pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
+    prior: &SMatrix<T, N, N>,
+    cross_t: &SMatrix<T, M, N>,
+    c: &SMatrix<T, M, M>,
+) -> Result<Gain<T, N, M>, FilterError> {
+    let factor = cholesky(c).map_err(|e| not_pd(e.index))?;
+    let mut kt = *cross_t;
+    solve_lower(&factor, &mut kt);
+    solve_lower_transpose(&factor, &mut kt);
+    let k = kt.transpose();
+    let covariance = joseph_expanded(prior, &k, &cross_t.transpose(), c);
+    ensure_finite(covariance.as_slice(), Quantity::UpdatedEstimate)?;
+    Ok(Gain {
+        k,
+        covariance,
+        factor,
+    })
+}
 
 /// The state of an update after the adapters' `before_gain`.
 pub(crate) struct AdaptedStep<T: Real, const M: usize, R> {

@@ -1,11 +1,12 @@
 use nalgebra::{SMatrix, SVector};
 
-use super::outcome::{adapt, not_pd};
+use super::outcome::{adapt, joseph_gain, not_pd};
+use super::pending::PendingCovariance;
 use super::{Form, PredictForm, UpdateForm};
 use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::error::ensure_finite;
 use crate::linalg::{
-    cholesky, cholesky_semidefinite, joseph_expanded, mirror_lower, sandwich, solve_lower,
+    cholesky, cholesky_semidefinite, mirror_lower, solve_lower,
     solve_lower_transpose,
 };
 use crate::sigma::{self, MerweParams, SigmaWeights};
@@ -30,10 +31,7 @@ use crate::{FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSp
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct UnscentedForm<T: Real, const N: usize> {
-    p: SMatrix<T, N, N>,
-    q: SMatrix<T, N, N>,
-    fade: T,
-    pending: bool,
+    cov: PendingCovariance<T, N>,
     params: MerweParams<T>,
     weights: SigmaWeights<T>,
 }
@@ -47,10 +45,7 @@ impl<T: Real, const N: usize> UnscentedForm<T, N> {
             .weights(N)
             .ok_or(FilterError::InvalidParameter { name: "N" })?;
         let mut form = Self {
-            p: SMatrix::zeros(),
-            q: SMatrix::zeros(),
-            fade: T::one(),
-            pending: false,
+            cov: PendingCovariance::new(SMatrix::zeros()),
             params,
             weights,
         };
@@ -76,23 +71,6 @@ impl<T: Real, const N: usize> UnscentedForm<T, N> {
     pub fn weights(&self) -> &SigmaWeights<T> {
         &self.weights
     }
-
-    fn prior(&self, extra: T) -> SMatrix<T, N, N> {
-        if self.pending {
-            self.p * (self.fade * extra) + self.q
-        } else if extra == T::one() {
-            self.p
-        } else {
-            self.p * extra
-        }
-    }
-
-    fn commit(&mut self, p: SMatrix<T, N, N>) {
-        self.p = p;
-        self.q = SMatrix::zeros();
-        self.fade = T::one();
-        self.pending = false;
-    }
 }
 
 fn factor<T: Real, const N: usize>(p: &SMatrix<T, N, N>) -> Result<SMatrix<T, N, N>, FilterError> {
@@ -116,14 +94,14 @@ pub(crate) fn effective_jacobian<T: Real, const N: usize, const M: usize>(
 
 impl<T: Real, const N: usize> Form<T, N> for UnscentedForm<T, N> {
     fn covariance(&self) -> SMatrix<T, N, N> {
-        self.prior(T::one())
+        self.cov.prior(T::one())
     }
 
     fn set_covariance(&mut self, p: &SMatrix<T, N, N>) -> Result<(), FilterError> {
         ensure_finite(p.as_slice(), Quantity::StateCovariance)?;
         let mut p = *p;
         mirror_lower(&mut p);
-        self.commit(p);
+        self.cov.commit(p);
         Ok(())
     }
 }
@@ -137,7 +115,7 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Un
         adapter: &mut A,
         space: &S,
     ) -> Result<(), FilterError> {
-        let s = factor(&self.prior(T::one()))?;
+        let s = factor(&self.cov.prior(T::one()))?;
         let mut q = model.noise(x, dt);
         ensure_finite(q.as_slice(), Quantity::ProcessNoise)?;
         mirror_lower(&mut q);
@@ -148,10 +126,7 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Un
         let mut step = PriorStep::new(dt);
         adapter.after_predict(&mut step);
         *x = propagated.mean;
-        self.p = p;
-        self.q = q;
-        self.fade = step.fade_factor();
-        self.pending = true;
+        self.cov.predicted(p, q, step.fade_factor());
         Ok(())
     }
 }
@@ -173,7 +148,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         mirror_lower(&mut r);
         let w = self.weights;
 
-        let prior = self.prior(T::one());
+        let prior = self.cov.prior(T::one());
         let s = factor(&prior)?;
         let measured = sigma::measure(x, &s, &w, model, space)?;
         let pzz = measured.covariance(&w);
@@ -181,10 +156,8 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         ensure_finite(nu.as_slice(), Quantity::Measurement)?;
 
         let split = A::NEEDS_SPLIT.then(|| {
-            match (self.pending, effective_jacobian(&s, &measured.cross)) {
-                (true, Some(h)) => (sandwich(&h, &self.p) * self.fade, sandwich(&h, &self.q)),
-                _ => (pzz, SMatrix::zeros()),
-            }
+            let h = effective_jacobian(&s, &measured.cross);
+            self.cov.split(h.as_ref(), &pzz)
         });
         // Factor here rather than in `GainStep::new` to report the failing pivot.
         let c_factor = cholesky(&(pzz + r)).map_err(|e| not_pd(e.index))?;
@@ -192,14 +165,14 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         let mut done = adapt(adapter, step);
         let fade = done.step.fade_factor();
         if done.step.is_rejected() {
-            self.commit(prior);
+            self.cov.commit(prior);
             return Ok(done.rejected(nu));
         }
 
         let (prior, measured, pzz) = if fade == T::one() {
             (prior, measured, pzz)
         } else {
-            let prior = self.prior(fade);
+            let prior = self.cov.prior(fade);
             let measured = sigma::measure(x, &factor(&prior)?, &w, model, space)?;
             let pzz = measured.covariance(&w);
             (prior, measured, pzz)
@@ -209,23 +182,17 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         ensure_finite(r_used.as_slice(), Quantity::MeasurementNoise)?;
         ensure_finite(nu_used.as_slice(), Quantity::Measurement)?;
         let c = pzz + r_used;
-        let l = cholesky(&c).map_err(|e| not_pd(e.index))?;
-        let mut kt = measured.cross.transpose();
-        solve_lower(&l, &mut kt);
-        solve_lower_transpose(&l, &mut kt);
-        let k = kt.transpose();
-        let x_new = space.add(x, &(k * nu_used));
-        let p_new = joseph_expanded(&prior, &k, &measured.cross, &c);
+        let gain = joseph_gain(&prior, &measured.cross.transpose(), &c)?;
+        let x_new = space.add(x, &(gain.k * nu_used));
         ensure_finite(x_new.as_slice(), Quantity::UpdatedEstimate)?;
-        ensure_finite(p_new.as_slice(), Quantity::UpdatedEstimate)?;
 
         *x = x_new;
-        let total_fade = if self.pending { self.fade * fade } else { fade };
-        self.commit(p_new);
+        let total_fade = self.cov.total_fade(fade);
+        self.cov.commit(gain.covariance);
         adapter.after_update(
-            &Posterior::new(&nu_used, &pzz, &r_used, &l),
+            &Posterior::new(&nu_used, &pzz, &r_used, &gain.factor),
             &mut done.adapters,
         );
-        Ok(done.accepted(nu, c, &l, total_fade))
+        Ok(done.accepted(nu, c, &gain.factor, total_fade))
     }
 }

@@ -1,0 +1,80 @@
+//! A covariance with a prediction pending its update.
+
+use nalgebra::SMatrix;
+
+use crate::linalg::sandwich;
+use crate::Real;
+
+/// The covariance of the covariance and unscented forms: after a predict it
+/// holds the propagated part `Φ P Φᵀ`, the process noise `Q` and a fade `λ`
+/// apart, so an adapter can still fade the propagated part at the update;
+/// the prior is `λ Φ P Φᵀ + Q`.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct PendingCovariance<T: Real, const N: usize> {
+    /// The posterior, or the propagated part while a prediction is pending.
+    p: SMatrix<T, N, N>,
+    /// The pending process noise.
+    q: SMatrix<T, N, N>,
+    /// The pending fade of `p` from the after-predict hook.
+    fade: T,
+    pending: bool,
+}
+
+impl<T: Real, const N: usize> PendingCovariance<T, N> {
+    /// A posterior covariance `p` (taken as symmetric).
+    pub fn new(p: SMatrix<T, N, N>) -> Self {
+        Self {
+            p,
+            q: SMatrix::zeros(),
+            fade: T::one(),
+            pending: false,
+        }
+    }
+
+    /// `λ_total Φ P Φᵀ + Q` for an extra fade `extra` on top of the pending one.
+    pub fn prior(&self, extra: T) -> SMatrix<T, N, N> {
+        if self.pending {
+            self.p * (self.fade * extra) + self.q
+        } else if extra == T::one() {
+            self.p
+        } else {
+            self.p * extra
+        }
+    }
+
+    /// The fade applied to the propagated part with an extra fade `extra`.
+    pub fn total_fade(&self, extra: T) -> T {
+        if self.pending {
+            self.fade * extra
+        } else {
+            extra
+        }
+    }
+
+    /// Replaces the covariance by the posterior `p`; nothing is pending.
+    pub fn commit(&mut self, p: SMatrix<T, N, N>) {
+        *self = Self::new(p);
+    }
+
+    /// Records a prediction: propagated part, process noise and fade.
+    pub fn predicted(&mut self, propagated: SMatrix<T, N, N>, q: SMatrix<T, N, N>, fade: T) {
+        self.p = propagated;
+        self.q = q;
+        self.fade = fade;
+        self.pending = true;
+    }
+
+    /// `(H Φ P Φᵀ Hᵀ · λ, H Q Hᵀ)` for a (possibly statistically linearised)
+    /// measurement matrix `h`; without a pending prediction all of
+    /// `predicted` is propagated.
+    pub fn split<const M: usize>(
+        &self,
+        h: Option<&SMatrix<T, M, N>>,
+        predicted: &SMatrix<T, M, M>,
+    ) -> (SMatrix<T, M, M>, SMatrix<T, M, M>) {
+        match h {
+            Some(h) if self.pending => (sandwich(h, &self.p) * self.fade, sandwich(h, &self.q)),
+            _ => (*predicted, SMatrix::zeros()),
+        }
+    }
+}
