@@ -70,7 +70,10 @@ where
         truth = wrap(truth + 0.02);
         filter.predict(&turn, 1.0).unwrap();
         let predicted = filter.state()[0];
-        assert!(wrap(predicted - truth).abs() < 1e-9, "predict: {predicted} vs {truth}");
+        assert!(
+            wrap(predicted - truth).abs() < 1e-9,
+            "predict: {predicted} vs {truth}"
+        );
         filter.update(&Compass, &Vector1::new(truth)).unwrap();
         let x = filter.state()[0];
         assert!(x > -PI && x <= PI);

@@ -3,9 +3,7 @@
 use nalgebra::{SMatrix, SVector};
 
 use crate::adapter::{NoiseAdapter, PriorAdapter};
-use crate::form::{
-    CovarianceForm, Form, PredictForm, SquareRootForm, UnscentedForm, UpdateForm,
-};
+use crate::form::{CovarianceForm, Form, PredictForm, SquareRootForm, UnscentedForm, UpdateForm};
 use crate::{Euclidean, FilterError, Real, StateSpace, UpdateReport};
 
 /// A recursive estimator of an `N`-dimensional state: an update form `F`
@@ -60,8 +58,7 @@ pub type Ekf<T, const N: usize, A = (), S = Euclidean> = Filter<T, N, Covariance
 pub type Ukf<T, const N: usize, A = (), S = Euclidean> = Filter<T, N, UnscentedForm<T, N>, A, S>;
 
 /// Square-root unscented Kalman filter carrying the lower Cholesky factor.
-pub type SrUkf<T, const N: usize, A = (), S = Euclidean> =
-    Filter<T, N, SquareRootForm<T, N>, A, S>;
+pub type SrUkf<T, const N: usize, A = (), S = Euclidean> = Filter<T, N, SquareRootForm<T, N>, A, S>;
 
 impl<T: Real, const N: usize> Filter<T, N, CovarianceForm<T, N>> {
     /// A covariance-form filter from the initial state and covariance (lower
@@ -169,7 +166,8 @@ impl<T: Real, const N: usize, F: Form<T, N>, A, S: StateSpace<T, N>> Filter<T, N
         F: UpdateForm<T, N, H, M>,
         B: NoiseAdapter<T, M>,
     {
-        self.form.update(&mut self.x, model, z, adapter, &self.space)
+        self.form
+            .update(&mut self.x, model, z, adapter, &self.space)
     }
 
     /// The state estimate.

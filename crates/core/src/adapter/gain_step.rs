@@ -64,7 +64,9 @@ impl<T: Real, const M: usize> GainStep<T, M> {
     ) -> Option<Self> {
         let covariance = predicted + noise;
         let factor = cholesky(&covariance).ok()?;
-        Some(Self::with_factor(innovation, predicted, split, noise, factor))
+        Some(Self::with_factor(
+            innovation, predicted, split, noise, factor,
+        ))
     }
 
     /// Like [`new`](Self::new) with the Cholesky factor of `H P⁻ Hᵀ + R`

@@ -5,12 +5,9 @@ use super::pending::PendingCovariance;
 use super::{sequential, Form, PredictForm, UpdateForm};
 use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::error::ensure_finite;
-use crate::linalg::{
-    cholesky, mirror_lower, sandwich, sandwich_transposed,
-};
+use crate::linalg::{cholesky, mirror_lower, sandwich, sandwich_transposed};
 use crate::{
-    FilterError, LinearizedMeasurement, LinearizedProcess, Quantity, Real, StateSpace,
-    UpdateReport,
+    FilterError, LinearizedMeasurement, LinearizedProcess, Quantity, Real, StateSpace, UpdateReport,
 };
 
 /// The covariance form (Kalman filter, extended Kalman filter): stores `P`,

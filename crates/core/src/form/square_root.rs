@@ -10,7 +10,9 @@ use crate::linalg::{
     solve_lower_transpose, update_in_place, weighted_rank_one,
 };
 use crate::sigma::{self, MeasuredSigma, MerweParams, Pairs, SigmaWeights};
-use crate::{FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace, UpdateReport};
+use crate::{
+    FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace, UpdateReport,
+};
 
 /// How the square-root form folds the weighted sigma-point deviations into
 /// the covariance factor in its time update.
@@ -96,9 +98,9 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
 
     /// The same form with sigma-point parameters `params`.
     pub fn with_params(mut self, params: MerweParams<T>) -> Result<Self, FilterError> {
-        self.weights = params
-            .weights(N)
-            .ok_or(FilterError::InvalidParameter { name: "MerweParams" })?;
+        self.weights = params.weights(N).ok_or(FilterError::InvalidParameter {
+            name: "MerweParams",
+        })?;
         self.params = params;
         Ok(self)
     }
@@ -178,7 +180,12 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
             index: e.index,
         })?;
         let mut pairs = measured.pairs;
-        Self::fold(self.time_update, &mut sz, &mut pairs, self.weights.other.sqrt());
+        Self::fold(
+            self.time_update,
+            &mut sz,
+            &mut pairs,
+            self.weights.other.sqrt(),
+        );
         weighted_rank_one(&mut sz, &measured.center, self.weights.cov0)
             .map_err(|e| not_pd(e.index))?;
         // The same singularity test as `cholesky`: a pivot at or below
@@ -244,11 +251,12 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Sq
             &mut propagated.pairs,
             (self.weights.other * lambda).sqrt(),
         );
-        weighted_rank_one(&mut factor, &propagated.center, self.weights.cov0 * lambda)
-            .map_err(|e| FilterError::DowndateFailed {
+        weighted_rank_one(&mut factor, &propagated.center, self.weights.cov0 * lambda).map_err(
+            |e| FilterError::DowndateFailed {
                 column: 0,
                 index: e.index,
-            })?;
+            },
+        )?;
         ensure_finite(factor.as_slice(), Quantity::StateCovariance)?;
 
         *x = propagated.mean;

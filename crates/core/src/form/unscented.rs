@@ -6,11 +6,12 @@ use super::{Form, PredictForm, UpdateForm};
 use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::error::ensure_finite;
 use crate::linalg::{
-    cholesky, cholesky_semidefinite, mirror_lower, solve_lower,
-    solve_lower_transpose,
+    cholesky, cholesky_semidefinite, mirror_lower, solve_lower, solve_lower_transpose,
 };
 use crate::sigma::{self, MerweParams, SigmaWeights};
-use crate::{FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace, UpdateReport};
+use crate::{
+    FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace, UpdateReport,
+};
 
 /// The unscented form (UKF) with Merwe scaled sigma points. Needs no
 /// Jacobians: plain [`ProcessModel`] and [`MeasurementModel`] suffice.
@@ -55,9 +56,9 @@ impl<T: Real, const N: usize> UnscentedForm<T, N> {
 
     /// The same form with sigma-point parameters `params`.
     pub fn with_params(mut self, params: MerweParams<T>) -> Result<Self, FilterError> {
-        self.weights = params
-            .weights(N)
-            .ok_or(FilterError::InvalidParameter { name: "MerweParams" })?;
+        self.weights = params.weights(N).ok_or(FilterError::InvalidParameter {
+            name: "MerweParams",
+        })?;
         self.params = params;
         Ok(self)
     }

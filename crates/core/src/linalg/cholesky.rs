@@ -190,6 +190,9 @@ mod tests {
     #[test]
     fn semidefinite_rejects_negative_pivots() {
         let a = Matrix3::new(1.0, 0.0, 0.0, 0.0, -1e-3, 0.0, 0.0, 0.0, 1.0);
-        assert_eq!(cholesky_semidefinite(&a), Err(NotPositiveDefinite { index: 1 }));
+        assert_eq!(
+            cholesky_semidefinite(&a),
+            Err(NotPositiveDefinite { index: 1 })
+        );
     }
 }

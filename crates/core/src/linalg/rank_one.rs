@@ -165,7 +165,11 @@ mod tests {
         let v = Vector3::new(0.7, -1.2, 0.4);
         let mut s = cholesky(&p).unwrap();
         rank_one_update(&mut s, &v).unwrap();
-        assert_relative_eq!(s, cholesky(&(p + v * v.transpose())).unwrap(), epsilon = 1e-13);
+        assert_relative_eq!(
+            s,
+            cholesky(&(p + v * v.transpose())).unwrap(),
+            epsilon = 1e-13
+        );
     }
 
     #[test]
@@ -174,7 +178,11 @@ mod tests {
         let v = Vector3::new(0.3, -0.2, 0.25);
         let mut s = cholesky(&p).unwrap();
         rank_one_downdate(&mut s, &v).unwrap();
-        assert_relative_eq!(s, cholesky(&(p - v * v.transpose())).unwrap(), epsilon = 1e-13);
+        assert_relative_eq!(
+            s,
+            cholesky(&(p - v * v.transpose())).unwrap(),
+            epsilon = 1e-13
+        );
     }
 
     #[test]
@@ -204,7 +212,10 @@ mod tests {
         assert_eq!(s, s0);
         // Downdating exactly to singular is refused too.
         let exact = s0.column(0).into_owned();
-        assert_eq!(rank_one_downdate(&mut s, &exact), Err(NotPositiveDefinite { index: 0 }));
+        assert_eq!(
+            rank_one_downdate(&mut s, &exact),
+            Err(NotPositiveDefinite { index: 0 })
+        );
     }
 
     #[test]
@@ -214,7 +225,11 @@ mod tests {
         for w in [2.0, -0.5] {
             let mut s = cholesky(&p).unwrap();
             weighted_rank_one(&mut s, &v, w).unwrap();
-            assert_relative_eq!(s * s.transpose(), p + v * v.transpose() * w, epsilon = 1e-13);
+            assert_relative_eq!(
+                s * s.transpose(),
+                p + v * v.transpose() * w,
+                epsilon = 1e-13
+            );
         }
     }
 }
