@@ -9,7 +9,15 @@
 //! checked against the hand-written `f64` filter, so a benchmark cannot
 //! silently time a wrong or failing path.
 //!
+//! Groups (each `<group>/<N>`, N ∈ {2, 4, 6, 9, 12, 15, 18, 24, 32}):
+//! `kf_step` (dense `R`, batch Joseph update), `kf_step_diag` (diagonal `R`,
+//! sequential scalar updates), `kf_step_diag_batch` (diagonal `R`, batch),
+//! `ukf_step`, `srukf_step` (Householder time update), `srukf_step_rankone`,
+//! and the baselines `nalgebra_step` and `adskalman_step`; in `f32` at
+//! `N = 15` only: `kf_step_f32`, `ukf_step_f32`, `srukf_step_f32`.
+//!
 //! `cargo bench --bench step -- --warm-up-time 1 --measurement-time 3`
+//! (append a filter such as `'/15$'` for one size).
 
 mod common;
 

@@ -7,6 +7,7 @@
 //! `P = S Sᵀ`.
 
 mod cholesky;
+mod product;
 mod rank_one;
 mod symmetric;
 mod triangular;

@@ -1,5 +1,6 @@
 use nalgebra::{SMatrix, SVector};
 
+use super::product::add_products;
 use crate::Real;
 
 /// Copies the lower triangle of `p` onto its upper triangle, making `p`
@@ -23,8 +24,8 @@ pub fn mirror_lower<T: Real, const N: usize>(p: &mut SMatrix<T, N, N>) {
 }
 
 /// `A P Aᵀ` for a symmetric `P`, computing one triangle (the product `A P`
-/// in full, then the lower half of `(A P) Aᵀ`) and mirroring it, so the
-/// result is exactly symmetric.
+/// in full, reading `P` as `Pᵀ`, then the lower half of `(A P) Aᵀ`) and
+/// mirroring it, so the result is exactly symmetric.
 ///
 /// ```
 /// use kestrel_core::linalg::sandwich;
@@ -38,12 +39,15 @@ pub fn sandwich<T: Real, const R: usize, const C: usize>(
     a: &SMatrix<T, R, C>,
     p: &SMatrix<T, C, C>,
 ) -> SMatrix<T, R, R> {
-    let ap = a * p;
+    // A P = A Pᵀ for the symmetric P.
+    let mut ap = SMatrix::zeros();
+    add_products(&mut ap, None, [a], [p], false);
     sandwich_transposed(&ap, a)
 }
 
 /// The symmetric product `B Aᵀ` where `B = A P` (or any product known to be
-/// symmetric, such as `H (P Hᵀ)`), computing the lower triangle only.
+/// symmetric, such as `H (P Hᵀ)`), computing the lower triangle only (in
+/// register tiles, up to the tiles that straddle the diagonal) and mirroring it.
 ///
 /// ```
 /// use kestrel_core::linalg::sandwich_transposed;
@@ -57,22 +61,9 @@ pub fn sandwich_transposed<T: Real, const R: usize, const C: usize>(
     b: &SMatrix<T, R, C>,
     a: &SMatrix<T, R, C>,
 ) -> SMatrix<T, R, R> {
+    // out[i, j] = Σ_k B[i, k] A[j, k], lower triangle.
     let mut out = SMatrix::<T, R, R>::zeros();
-    {
-        let o = out.as_mut_slice();
-        let bs = b.as_slice();
-        // out[i, j] = Σ_k B[i, k] A[j, k]; column j, rows i ≥ j.
-        for j in 0..R {
-            let oj = &mut o[j * R + j..j * R + R];
-            for k in 0..C {
-                let f = a[(j, k)];
-                let bk = &bs[k * R + j..k * R + R];
-                for (oi, bi) in oj.iter_mut().zip(bk) {
-                    *oi += *bi * f;
-                }
-            }
-        }
-    }
+    add_products(&mut out, None, [b], [a], true);
     mirror_lower(&mut out);
     out
 }
@@ -135,25 +126,8 @@ pub fn joseph_expanded<T: Real, const N: usize, const M: usize>(
     c: &SMatrix<T, M, M>,
 ) -> SMatrix<T, N, N> {
     let e = k * c - b;
-    let mut out = *p;
-    {
-        let o = out.as_mut_slice();
-        let ks = k.as_slice();
-        let es = e.as_slice();
-        let bs = b.as_slice();
-        for j in 0..N {
-            let oj = &mut o[j * N + j..j * N + N];
-            for m in 0..M {
-                let kj = ks[m * N + j];
-                let bj = bs[m * N + j];
-                let ecol = &es[m * N + j..m * N + N];
-                let kcol = &ks[m * N + j..m * N + N];
-                for ((oi, ei), ki) in oj.iter_mut().zip(ecol).zip(kcol) {
-                    *oi += *ei * kj - *ki * bj;
-                }
-            }
-        }
-    }
+    let mut out = SMatrix::zeros();
+    add_products(&mut out, Some(p), [&e, &-k], [k, b], true);
     mirror_lower(&mut out);
     out
 }
@@ -162,7 +136,7 @@ pub fn joseph_expanded<T: Real, const N: usize, const M: usize>(
 mod tests {
     use super::*;
     use approx::assert_relative_eq;
-    use nalgebra::{Matrix3, Matrix3x2, Matrix2x3, Matrix2};
+    use nalgebra::{Matrix2, Matrix2x3, Matrix3, Matrix3x2};
 
     #[test]
     fn sandwich_matches_naive() {
@@ -187,6 +161,26 @@ mod tests {
         let textbook = i_kh * p * i_kh.transpose() + k * r * k.transpose();
         let got = joseph_expanded(&p, &k, &b, &c);
         assert_relative_eq!(got, textbook, epsilon = 1e-13);
+        assert_eq!(got, got.transpose());
+    }
+
+    #[test]
+    fn products_match_naive_on_tiled_sizes() {
+        // 11 states: register tiles with an overlapping last tile.
+        let a = SMatrix::<f64, 11, 11>::from_fn(|i, j| ((i * 5 + j * 3) as f64 * 0.41).sin());
+        let p = a * a.transpose() + SMatrix::identity();
+        let h = SMatrix::<f64, 3, 11>::from_fn(|i, j| ((i * 2 + j) as f64 * 0.7).cos());
+        let r = Matrix3::new(0.5, 0.1, 0.0, 0.1, 0.4, 0.05, 0.0, 0.05, 0.3);
+        let s = sandwich(&a, &p);
+        assert_relative_eq!(s, a * p * a.transpose(), max_relative = 1e-13);
+        assert_eq!(s, s.transpose());
+        let b = p * h.transpose();
+        let c = h * b + r;
+        let k = b * c.try_inverse().unwrap() * 0.9;
+        let i_kh = SMatrix::<f64, 11, 11>::identity() - k * h;
+        let textbook = i_kh * p * i_kh.transpose() + k * r * k.transpose();
+        let got = joseph_expanded(&p, &k, &b, &c);
+        assert_relative_eq!(got, textbook, epsilon = 1e-12);
         assert_eq!(got, got.transpose());
     }
 }

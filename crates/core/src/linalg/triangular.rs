@@ -18,10 +18,11 @@ pub fn solve_lower<T: Real, const N: usize, const K: usize>(
     b: &mut SMatrix<T, N, K>,
 ) {
     let ls = l.as_slice();
+    let inv = reciprocal_diagonal(l);
     for c in 0..K {
         let col = &mut b.as_mut_slice()[c * N..c * N + N];
         for k in 0..N {
-            let xk = col[k] / ls[k * N + k];
+            let xk = col[k] * inv[k];
             col[k] = xk;
             let lk = &ls[k * N + k + 1..k * N + N];
             for (bi, li) in col[k + 1..].iter_mut().zip(lk) {
@@ -47,6 +48,7 @@ pub fn solve_lower_transpose<T: Real, const N: usize, const K: usize>(
     b: &mut SMatrix<T, N, K>,
 ) {
     let ls = l.as_slice();
+    let inv = reciprocal_diagonal(l);
     for c in 0..K {
         let col = &mut b.as_mut_slice()[c * N..c * N + N];
         for k in (0..N).rev() {
@@ -55,9 +57,15 @@ pub fn solve_lower_transpose<T: Real, const N: usize, const K: usize>(
             for (xi, li) in col[k + 1..].iter().zip(lk) {
                 acc -= *li * *xi;
             }
-            col[k] = acc / ls[k * N + k];
+            col[k] = acc * inv[k];
         }
     }
+}
+
+/// `1 / L_kk`: one division per pivot instead of one per pivot and
+/// right-hand side (divisions dominate short solves with many columns).
+fn reciprocal_diagonal<T: Real, const N: usize>(l: &SMatrix<T, N, N>) -> [T; N] {
+    core::array::from_fn(|k| l[(k, k)].recip())
 }
 
 #[cfg(test)]
