@@ -24,12 +24,12 @@ pub struct DemoArgs {
     seed: u64,
 }
 
-/// Acceleration noise density of the target [m²/s³].
+/// Acceleration noise density of the target (m²/s³).
 const ACCEL_PSD: f64 = 0.5;
-/// Radar range noise [m] and bearing noise [rad].
+/// Radar range noise (m) and bearing noise (rad).
 const RANGE_SIGMA: f64 = 10.0;
 const BEARING_SIGMA: f64 = 0.01;
-/// Scan interval [s].
+/// Scan interval (s).
 const DT: f64 = 1.0;
 
 /// Accumulated statistics of one filter.

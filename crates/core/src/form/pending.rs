@@ -9,7 +9,7 @@ use crate::Real;
 /// holds the propagated part `Φ P Φᵀ`, the process noise `Q` and a fade `λ`
 /// apart, so an adapter can still fade the propagated part at the update;
 /// the prior is `λ Φ P Φᵀ + Q`.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub(crate) struct PendingCovariance<T: Real, const N: usize> {
     /// The posterior, or the propagated part while a prediction is pending.
     p: SMatrix<T, N, N>,
@@ -52,8 +52,12 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
     }
 
     /// Replaces the covariance by the posterior `p`; nothing is pending.
+    /// (`q` is only read while a prediction is pending, so it is left as is
+    /// rather than cleared: this runs on every update.)
     pub fn commit(&mut self, p: SMatrix<T, N, N>) {
-        *self = Self::new(p);
+        self.p = p;
+        self.fade = T::one();
+        self.pending = false;
     }
 
     /// Records a prediction: propagated part, process noise and fade.
@@ -76,5 +80,15 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
             Some(h) if self.pending => (sandwich(h, &self.p) * self.fade, sandwich(h, &self.q)),
             _ => (*predicted, SMatrix::zeros()),
         }
+    }
+}
+
+/// Equal when they represent the same covariance state: `q` and the fade
+/// matter only while a prediction is pending.
+impl<T: Real, const N: usize> PartialEq for PendingCovariance<T, N> {
+    fn eq(&self, other: &Self) -> bool {
+        self.p == other.p
+            && self.pending == other.pending
+            && (!self.pending || (self.q == other.q && self.fade == other.fade))
     }
 }
