@@ -1,11 +1,11 @@
 use nalgebra::{SMatrix, SVector};
 
-use super::outcome::{adapt, joseph_gain, not_pd};
+use super::outcome::{adapt_checked, joseph_gain};
 use super::pending::PendingCovariance;
 use super::{sequential, Form, PredictForm, UpdateForm};
-use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
+use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::error::ensure_finite;
-use crate::linalg::{cholesky, mirror_lower, sandwich, sandwich_transposed};
+use crate::linalg::{mirror_lower, sandwich, sandwich_transposed};
 use crate::{
     FilterError, LinearizedMeasurement, LinearizedProcess, Quantity, Real, StateSpace, UpdateReport,
 };
@@ -147,10 +147,7 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         let hp = h * prior;
         let hph = sandwich_transposed(&hp, &h);
         let split = A::NEEDS_SPLIT.then(|| self.cov.split(Some(&h), &hph));
-        // Factor here rather than in `GainStep::new` to report the failing pivot.
-        let c_factor = cholesky(&(hph + r)).map_err(|e| not_pd(e.index))?;
-        let step = GainStep::with_factor(nu, hph, split, r, c_factor);
-        let mut done = adapt(adapter, step);
+        let mut done = adapt_checked(adapter, nu, hph, split, r)?;
         let fade = done.step.fade_factor();
         if done.step.is_rejected() {
             self.cov.commit(prior);
@@ -165,10 +162,7 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             let hph = sandwich_transposed(&hp, &h);
             (prior, hp, hph)
         };
-        let r_used = *done.step.noise();
-        let nu_used = *done.step.innovation();
-        ensure_finite(r_used.as_slice(), Quantity::MeasurementNoise)?;
-        ensure_finite(nu_used.as_slice(), Quantity::Measurement)?;
+        let (r_used, nu_used) = done.used()?;
         let c = hph + r_used;
         let gain = joseph_gain(&prior, &hp, &c)?;
         let x_new = space.add(x, &(gain.k * nu_used));

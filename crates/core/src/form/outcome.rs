@@ -55,6 +55,21 @@ pub(crate) fn not_pd(index: usize) -> FilterError {
     }
 }
 
+/// Builds the adapters' view from the innovation, `H P⁻ Hᵀ`, its split and
+/// `R`, failing with the pivot index if `H P⁻ Hᵀ + R` is not positive
+/// definite, and runs the adapters on it.
+pub(crate) fn adapt_checked<T: Real, const M: usize, A: NoiseAdapter<T, M>>(
+    adapter: &mut A,
+    innovation: SVector<T, M>,
+    predicted: SMatrix<T, M, M>,
+    split: Option<(SMatrix<T, M, M>, SMatrix<T, M, M>)>,
+    noise: SMatrix<T, M, M>,
+) -> Result<AdaptedStep<T, M, A::Report>, FilterError> {
+    let factor = cholesky(&(predicted + noise)).map_err(|e| not_pd(e.index))?;
+    let step = GainStep::with_factor(innovation, predicted, split, noise, factor);
+    Ok(adapt(adapter, step))
+}
+
 /// Runs the adapters on a freshly built view.
 pub(crate) fn adapt<T: Real, const M: usize, A: NoiseAdapter<T, M>>(
     adapter: &mut A,
@@ -73,6 +88,14 @@ pub(crate) fn adapt<T: Real, const M: usize, A: NoiseAdapter<T, M>>(
 }
 
 impl<T: Real, const M: usize, R> AdaptedStep<T, M, R> {
+    /// The noise and innovation the adapters settled on, checked finite.
+    pub fn used(&self) -> Result<(SMatrix<T, M, M>, SVector<T, M>), FilterError> {
+        let (r, nu) = (*self.step.noise(), *self.step.innovation());
+        ensure_finite(r.as_slice(), Quantity::MeasurementNoise)?;
+        ensure_finite(nu.as_slice(), Quantity::Measurement)?;
+        Ok((r, nu))
+    }
+
     /// The report of a measurement an adapter rejected.
     pub fn rejected(self, innovation: SVector<T, M>) -> UpdateReport<T, M, R> {
         UpdateReport {

@@ -316,10 +316,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             return Ok(done.rejected(nu));
         }
 
-        let r_used = *done.step.noise();
-        let nu_used = *done.step.innovation();
-        ensure_finite(r_used.as_slice(), Quantity::MeasurementNoise)?;
-        ensure_finite(nu_used.as_slice(), Quantity::Measurement)?;
+        let (r_used, nu_used) = done.used()?;
         let (prior, measured, sz) = if fade != T::one() {
             let prior = self.prior_factor(fade);
             let measured = sigma::measure(x, &prior, &w, model, space)?;

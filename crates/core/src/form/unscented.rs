@@ -1,13 +1,11 @@
 use nalgebra::{SMatrix, SVector};
 
-use super::outcome::{adapt, joseph_gain, not_pd};
+use super::outcome::{adapt_checked, joseph_gain};
 use super::pending::PendingCovariance;
 use super::{Form, PredictForm, UpdateForm};
-use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
+use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::error::ensure_finite;
-use crate::linalg::{
-    cholesky, cholesky_semidefinite, mirror_lower, solve_lower, solve_lower_transpose,
-};
+use crate::linalg::{cholesky_semidefinite, mirror_lower, solve_lower, solve_lower_transpose};
 use crate::sigma::{self, MerweParams, SigmaWeights};
 use crate::{
     FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace, UpdateReport,
@@ -160,10 +158,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             let h = effective_jacobian(&s, &measured.cross);
             self.cov.split(h.as_ref(), &pzz)
         });
-        // Factor here rather than in `GainStep::new` to report the failing pivot.
-        let c_factor = cholesky(&(pzz + r)).map_err(|e| not_pd(e.index))?;
-        let step = GainStep::with_factor(nu, pzz, split, r, c_factor);
-        let mut done = adapt(adapter, step);
+        let mut done = adapt_checked(adapter, nu, pzz, split, r)?;
         let fade = done.step.fade_factor();
         if done.step.is_rejected() {
             self.cov.commit(prior);
@@ -178,10 +173,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             let pzz = measured.covariance(&w);
             (prior, measured, pzz)
         };
-        let r_used = *done.step.noise();
-        let nu_used = *done.step.innovation();
-        ensure_finite(r_used.as_slice(), Quantity::MeasurementNoise)?;
-        ensure_finite(nu_used.as_slice(), Quantity::Measurement)?;
+        let (r_used, nu_used) = done.used()?;
         let c = pzz + r_used;
         let gain = joseph_gain(&prior, &measured.cross.transpose(), &c)?;
         let x_new = space.add(x, &(gain.k * nu_used));
