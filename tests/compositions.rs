@@ -89,41 +89,23 @@ where
     }
 }
 
+/// Runs [`doublers`] with the tuple of doublers numbered `ids`, each tuple
+/// arity being its own type.
+macro_rules! doubler_tuple {
+    ($name:expr, $f:expr, $($id:literal),+) => {{
+        let l = log();
+        let t = ($(doubler($id, &l),)+);
+        doublers($name, $f, t, [$($id),+].len(), &l);
+    }};
+}
+
 fn tuples_of_one_to_six<F: LinForm>(name: &str, f: Filter<f64, 2, F>) {
-    let l = log();
-    doublers(name, f.clone(), (doubler(1, &l),), 1, &l);
-    let l = log();
-    doublers(name, f.clone(), (doubler(1, &l), doubler(2, &l)), 2, &l);
-    let l = log();
-    let t = (doubler(1, &l), doubler(2, &l), doubler(3, &l));
-    doublers(name, f.clone(), t, 3, &l);
-    let l = log();
-    let t = (
-        doubler(1, &l),
-        doubler(2, &l),
-        doubler(3, &l),
-        doubler(4, &l),
-    );
-    doublers(name, f.clone(), t, 4, &l);
-    let l = log();
-    let t = (
-        doubler(1, &l),
-        doubler(2, &l),
-        doubler(3, &l),
-        doubler(4, &l),
-        doubler(5, &l),
-    );
-    doublers(name, f.clone(), t, 5, &l);
-    let l = log();
-    let t = (
-        doubler(1, &l),
-        doubler(2, &l),
-        doubler(3, &l),
-        doubler(4, &l),
-        doubler(5, &l),
-        doubler(6, &l),
-    );
-    doublers(name, f, t, 6, &l);
+    doubler_tuple!(name, f.clone(), 1);
+    doubler_tuple!(name, f.clone(), 1, 2);
+    doubler_tuple!(name, f.clone(), 1, 2, 3);
+    doubler_tuple!(name, f.clone(), 1, 2, 3, 4);
+    doubler_tuple!(name, f.clone(), 1, 2, 3, 4, 5);
+    doubler_tuple!(name, f, 1, 2, 3, 4, 5, 6);
 }
 
 #[test]
