@@ -143,10 +143,15 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             });
         }
 
-        // H P⁻ (= (P⁻ Hᵀ)ᵀ) and H P⁻ Hᵀ, one triangle.
-        let hp = h * prior;
+        // H P⁻ (= (P⁻ Hᵀ)ᵀ) and H P⁻ Hᵀ, one triangle; with the split, H P⁻
+        // is assembled from H Φ P Φᵀ and H Q, which the split needs anyway.
+        let (hp, split) = if A::NEEDS_SPLIT {
+            self.cov.measured(&h)
+        } else {
+            (h * prior, None)
+        };
         let hph = sandwich_transposed(&hp, &h);
-        let split = A::NEEDS_SPLIT.then(|| self.cov.split(Some(&h), &hph));
+        let split = A::NEEDS_SPLIT.then(|| split.unwrap_or((hph, SMatrix::zeros())));
         let mut done = adapt_checked(adapter, nu, hph, split, r)?;
         let fade = done.step.fade_factor();
         if done.step.is_rejected() {
@@ -164,7 +169,7 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         };
         let (r_used, nu_used) = done.used()?;
         let c = hph + r_used;
-        let gain = joseph_gain(&prior, &hp, &c)?;
+        let gain = joseph_gain(&prior, &hp, &c, done.factor_if_unfaded())?;
         let x_new = space.add(x, &(gain.k * nu_used));
         ensure_finite(x_new.as_slice(), Quantity::UpdatedEstimate)?;
 

@@ -20,13 +20,19 @@ pub(crate) struct Gain<T: Real, const N: usize, const M: usize> {
 
 /// The gain `K = B C⁻¹` (two triangular solves on `Bᵀ`) and the expanded
 /// Joseph update of `prior`, for the cross covariance `B = P⁻ Hᵀ` (or `P_xz`),
-/// given transposed, and the innovation covariance `c`.
+/// given transposed, and the innovation covariance `c`. `known` is the lower
+/// Cholesky factor of `c` if the caller already has it (the adapters' view
+/// factors the same matrix when nothing faded it).
 pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
     prior: &SMatrix<T, N, N>,
     cross_t: &SMatrix<T, M, N>,
     c: &SMatrix<T, M, M>,
+    known: Option<&SMatrix<T, M, M>>,
 ) -> Result<Gain<T, N, M>, FilterError> {
-    let factor = cholesky(c).map_err(|e| not_pd(e.index))?;
+    let factor = match known {
+        Some(l) => *l,
+        None => cholesky(c).map_err(|e| not_pd(e.index))?,
+    };
     let mut kt = *cross_t;
     solve_lower(&factor, &mut kt);
     solve_lower_transpose(&factor, &mut kt);
@@ -88,6 +94,18 @@ pub(crate) fn adapt<T: Real, const M: usize, A: NoiseAdapter<T, M>>(
 }
 
 impl<T: Real, const M: usize, R> AdaptedStep<T, M, R> {
+    /// The factor of the view's innovation covariance when it is exactly
+    /// `predicted + R` as used for the gain: no fade was applied (a fade
+    /// makes the form recompute `predicted` from the faded prior, which
+    /// rounds differently from the view's update).
+    pub fn factor_if_unfaded(&self) -> Option<&SMatrix<T, M, M>> {
+        if self.step.fade_factor() == T::one() {
+            self.step.innovation_factor()
+        } else {
+            None
+        }
+    }
+
     /// The noise and innovation the adapters settled on, checked finite.
     pub fn used(&self) -> Result<(SMatrix<T, M, M>, SVector<T, M>), FilterError> {
         let (r, nu) = (*self.step.noise(), *self.step.innovation());

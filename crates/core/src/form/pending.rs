@@ -2,7 +2,7 @@
 
 use nalgebra::SMatrix;
 
-use crate::linalg::sandwich;
+use crate::linalg::{sandwich, sandwich_transposed};
 use crate::Real;
 
 /// The covariance of the covariance and unscented forms: after a predict it
@@ -80,6 +80,29 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
             Some(h) if self.pending => (sandwich(h, &self.p) * self.fade, sandwich(h, &self.q)),
             _ => (*predicted, SMatrix::zeros()),
         }
+    }
+
+    /// `H P⁻` for the measurement matrix `h` and, while a prediction is
+    /// pending, the split `(λ H Φ P Φᵀ Hᵀ, H Q Hᵀ)`, from the products
+    /// `H Φ P Φᵀ` and `H Q`: one `M×N×N` product more than `H P⁻` alone,
+    /// where [`split`](Self::split) costs two. Without a pending prediction
+    /// the split is `None` (all of `H P Hᵀ` is propagated).
+    #[allow(clippy::type_complexity)]
+    pub fn measured<const M: usize>(
+        &self,
+        h: &SMatrix<T, M, N>,
+    ) -> (
+        SMatrix<T, M, N>,
+        Option<(SMatrix<T, M, M>, SMatrix<T, M, M>)>,
+    ) {
+        if !self.pending {
+            return (h * self.p, None);
+        }
+        let hp_propagated = h * self.p;
+        let hq = h * self.q;
+        let hp = hp_propagated * self.fade + hq;
+        let propagated = sandwich_transposed(&hp_propagated, h) * self.fade;
+        (hp, Some((propagated, sandwich_transposed(&hq, h))))
     }
 }
 

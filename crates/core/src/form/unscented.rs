@@ -175,7 +175,12 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         };
         let (r_used, nu_used) = done.used()?;
         let c = pzz + r_used;
-        let gain = joseph_gain(&prior, &measured.cross.transpose(), &c)?;
+        let gain = joseph_gain(
+            &prior,
+            &measured.cross.transpose(),
+            &c,
+            done.factor_if_unfaded(),
+        )?;
         let x_new = space.add(x, &(gain.k * nu_used));
         ensure_finite(x_new.as_slice(), Quantity::UpdatedEstimate)?;
 

@@ -1,0 +1,49 @@
+//! Quantiles of the χ² distribution, for innovation tests whose threshold is
+//! `χ²_p(m)` with `m` the measurement dimension.
+
+use kestrel_core::FilterError;
+use statrs::distribution::{ChiSquared, ContinuousCDF};
+
+/// The `probability` quantile of the χ² distribution with `dof` degrees of
+/// freedom: the `c` with `P(χ²_dof ≤ c) = probability`.
+///
+/// An innovation test at significance `α` uses
+/// `chi_square_quantile(1.0 - α, m)`. Adapters call this once, in their
+/// constructor, never per update.
+///
+/// # Errors
+/// [`FilterError::InvalidParameter`] with name `"probability"` unless
+/// `0 < probability < 1`, or `"dof"` if `dof == 0`.
+///
+/// ```
+/// use kestrel_adaptive::chi_square_quantile;
+/// // One degree of freedom: the square of the normal 97.5 % quantile.
+/// let c = chi_square_quantile(0.95, 1).unwrap();
+/// assert!((c - 1.959_964_f64.powi(2)).abs() < 1e-5);
+/// // Two degrees of freedom: −2 ln(1 − p).
+/// let c = chi_square_quantile(0.95, 2).unwrap();
+/// assert!((c + 2.0 * (0.05_f64).ln()).abs() < 1e-9);
+/// assert!(chi_square_quantile(1.0, 2).is_err());
+/// assert!(chi_square_quantile(0.5, 0).is_err());
+/// ```
+pub fn chi_square_quantile(probability: f64, dof: usize) -> Result<f64, FilterError> {
+    // `probability > 0 && < 1` also refuses NaN.
+    if !(probability > 0.0 && probability < 1.0) {
+        return Err(FilterError::InvalidParameter {
+            name: "probability",
+        });
+    }
+    if dof == 0 {
+        return Err(FilterError::InvalidParameter { name: "dof" });
+    }
+    let dist =
+        ChiSquared::new(dof as f64).map_err(|_| FilterError::InvalidParameter { name: "dof" })?;
+    let c = dist.inverse_cdf(probability);
+    if c.is_finite() && c > 0.0 {
+        Ok(c)
+    } else {
+        Err(FilterError::InvalidParameter {
+            name: "probability",
+        })
+    }
+}

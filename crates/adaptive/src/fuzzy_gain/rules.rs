@@ -1,0 +1,129 @@
+//! The default odometer rule base and membership breakpoints (paper 003,
+//! section 3.3; the membership functions are in figures the text lacks, so
+//! the breakpoints are the project's choice).
+
+use kestrel_core::real::lit;
+use kestrel_core::{FilterError, Real};
+
+use crate::fuzzy::Consequent::{Set, Veto};
+use crate::fuzzy::Term::{Any, Is};
+use crate::fuzzy::{Defuzzifier, Engine, InputVariable, Membership, OutputVariable, Rule};
+
+/// The engine type of [`odometer_engine`]: 3 inputs (match factor, heading
+/// rate, innovation mean), up to 5 sets each, 5 output sets, 17 rules.
+pub type OdometerEngine<T> = Engine<T, 3, 5, 5, 17>;
+
+// Set indices.
+const T_: usize = 0; // tiny
+const S_: usize = 1; // small
+const Z_: usize = 2; // normal
+const B_: usize = 3; // big
+const L_: usize = 4; // large
+const LOW: usize = 0; // ΔH and r: small
+const MID: usize = 1; // medium
+const HIGH: usize = 2; // big
+
+/// The odometer rule base over `[dm₁, |ΔH|, r]` with output `α₁`. Sets:
+/// dm₁ and α₁ `T S Z B L` (0–4), |ΔH| and r `S M B` (0–2).
+///
+/// | dm₁ \ r | S | M | B |
+/// |---|---|---|---|
+/// | T | S | T ✗ | veto (outage) |
+/// | S | S | S* | S* |
+/// | Z | Z | S | S* |
+/// | B | B | B* | B* |
+/// | L | B | L ✗ | veto (outage) |
+///
+/// plus: dm₁ B and |ΔH| B → veto (side-slip); dm₁ L and |ΔH| B → veto*.
+/// ✗ marks output sets the paper calls unusable (`α₁` tiny / large);
+/// entries with * are the project's completion of the paper's list (r big
+/// behaves as r medium except at extreme ratios, which the paper treats as
+/// an outage: "use the SINS velocity").
+pub const ODOMETER_RULES: [Rule<3>; 17] = [
+    // The paper's list.
+    Rule::new([Is(B_), Is(HIGH), Any], Veto),
+    Rule::new([Is(T_), Any, Is(LOW)], Set(S_)),
+    Rule::new([Is(T_), Any, Is(MID)], Set(T_)),
+    Rule::new([Is(L_), Any, Is(LOW)], Set(B_)),
+    Rule::new([Is(L_), Any, Is(MID)], Set(L_)),
+    Rule::new([Is(Z_), Any, Is(LOW)], Set(Z_)),
+    Rule::new([Is(Z_), Any, Is(MID)], Set(S_)),
+    Rule::new([Is(S_), Any, Is(LOW)], Set(S_)),
+    Rule::new([Is(B_), Any, Is(LOW)], Set(B_)),
+    Rule::new([Is(T_), Any, Is(HIGH)], Veto),
+    Rule::new([Is(L_), Any, Is(HIGH)], Veto),
+    // Completion.
+    Rule::new([Is(L_), Is(HIGH), Any], Veto),
+    Rule::new([Is(S_), Any, Is(MID)], Set(S_)),
+    Rule::new([Is(B_), Any, Is(MID)], Set(B_)),
+    Rule::new([Is(S_), Any, Is(HIGH)], Set(S_)),
+    Rule::new([Is(Z_), Any, Is(HIGH)], Set(S_)),
+    Rule::new([Is(B_), Any, Is(HIGH)], Set(B_)),
+];
+
+/// Which output sets of [`odometer_engine`] mean "odometer unusable":
+/// `α₁` tiny and large.
+pub const ODOMETER_UNUSABLE: [bool; 5] = [true, false, false, false, true];
+
+/// The default odometer engine: [`ODOMETER_RULES`], exact centroid, and
+/// these membership functions (shoulders open to ±∞):
+///
+/// - dm₁ = |v_SINS| / |v_OD|: T ≤ 0.7 ↘ 0.85; S 0.7 / 0.85 / 1.0;
+///   Z 0.85 / 1.0 / 1.15; B 1.0 / 1.15 / 1.3; L 1.15 ↗ 1.3.
+/// - |ΔH|, heading rate in deg/s: S ≤ 5 ↘ 15; M 5 / 15 / 25; B 15 ↗ 25.
+/// - r, innovation mean in units of its predicted standard deviation:
+///   S ≤ 1 ↘ 2; M 1 / 2 / 3; B 2 ↗ 3.
+/// - α₁ over [0.55, 1.45]: triangles of half-width 0.15 centred on
+///   T 0.7, S 0.85, Z 1.0, B 1.15, L 1.3.
+///
+/// Each input's sets sum to 1 everywhere, and every combination of sets has
+/// a rule, so some rule always fires with strength ≥ ½.
+///
+/// ```
+/// use kestrel_adaptive::odometer_engine;
+/// let engine = odometer_engine::<f64>().unwrap();
+/// // Normal ratio, straight, small innovation: α₁ = 1.
+/// let (_, alpha) = engine.evaluate(&[1.0, 0.0, 0.5]);
+/// assert!((alpha.unwrap() - 1.0).abs() < 1e-12);
+/// ```
+///
+/// # Errors
+/// None for the built-in values; the `Result` is that of the constructors.
+pub fn odometer_engine<T: Real>() -> Result<OdometerEngine<T>, FilterError> {
+    let l = |v: f64| lit::<T>(v);
+    let tri = |a: f64, b: f64, c: f64| Membership::triangle(l(a), l(b), l(c));
+    let dm1 = InputVariable::new(&[
+        Membership::left_shoulder(l(0.7), l(0.85))?,
+        tri(0.7, 0.85, 1.0)?,
+        tri(0.85, 1.0, 1.15)?,
+        tri(1.0, 1.15, 1.3)?,
+        Membership::right_shoulder(l(1.15), l(1.3))?,
+    ])?;
+    let heading = InputVariable::new(&[
+        Membership::left_shoulder(l(5.0), l(15.0))?,
+        tri(5.0, 15.0, 25.0)?,
+        Membership::right_shoulder(l(15.0), l(25.0))?,
+    ])?;
+    let innovation = InputVariable::new(&[
+        Membership::left_shoulder(l(1.0), l(2.0))?,
+        tri(1.0, 2.0, 3.0)?,
+        Membership::right_shoulder(l(2.0), l(3.0))?,
+    ])?;
+    let alpha = OutputVariable::new(
+        [
+            tri(0.55, 0.7, 0.85)?,
+            tri(0.7, 0.85, 1.0)?,
+            tri(0.85, 1.0, 1.15)?,
+            tri(1.0, 1.15, 1.3)?,
+            tri(1.15, 1.3, 1.45)?,
+        ],
+        l(0.55),
+        l(1.45),
+    )?;
+    Engine::new(
+        [dm1, heading, innovation],
+        alpha,
+        ODOMETER_RULES,
+        Defuzzifier::Centroid,
+    )
+}

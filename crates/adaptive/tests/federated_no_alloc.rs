@@ -1,0 +1,170 @@
+//! The federated filter never touches the heap: a counting global allocator
+//! records every allocation, reallocation and deallocation of the current
+//! thread while armed, and a whole run — construction with isolation,
+//! predicting the KF, SR-UKF and UKF locals with their shared noise,
+//! updating, recording the innovation tests, fusing, isolating and
+//! re-admitting a biased local, and the error paths — makes none, in `f32`
+//! and in `f64`. A positive control shows an allocation while armed is
+//! counted.
+
+mod federated_common;
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+use std::hint::black_box;
+
+use federated_common::{cast, p0, process, sensor_a, sensor_b, sensor_c, simulate, x0};
+use kestrel_adaptive::federated::{FederatedFilter, FusionError, Isolation, Sharing};
+use kestrel_core::nalgebra::{Matrix4, Vector1, Vector2, Vector3};
+use kestrel_core::real::lit;
+use kestrel_core::{Ekf, Real, SrUkf, Ukf};
+
+/// The system allocator, counting the calls of an armed thread.
+struct Counting;
+
+thread_local! {
+    static ARMED: Cell<bool> = const { Cell::new(false) };
+    static CALLS: Cell<usize> = const { Cell::new(0) };
+}
+
+fn note() {
+    // `try_with`: the allocator may run while thread-locals are torn down.
+    let _ = ARMED.try_with(|armed| {
+        if armed.get() {
+            CALLS.with(|c| c.set(c.get() + 1));
+        }
+    });
+}
+
+// SAFETY: every call is forwarded unchanged to `System`.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        note();
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        note();
+        unsafe { System.alloc_zeroed(layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        note();
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        note();
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: Counting = Counting;
+
+/// Runs `f` armed and returns its result with the number of heap calls the
+/// current thread made meanwhile.
+fn heap_calls<R>(f: impl FnOnce() -> R) -> (R, usize) {
+    CALLS.with(|c| c.set(0));
+    ARMED.with(|a| a.set(true));
+    let out = f();
+    ARMED.with(|a| a.set(false));
+    (out, CALLS.with(Cell::get))
+}
+
+#[test]
+fn positive_control_counts_an_allocation_made_while_armed() {
+    let (_, calls) = heap_calls(|| drop(black_box(Box::new(black_box(7u64)))));
+    assert_eq!(calls, 2, "one allocation and one deallocation");
+    let (_, calls) = heap_calls(|| black_box(1 + 1));
+    assert_eq!(calls, 0);
+}
+
+/// Measurements in `T`, made before arming.
+type Readings<T> = Vec<(Vector2<T>, Vector3<T>, Vector1<T>)>;
+
+fn readings<T: Real>() -> Readings<T> {
+    simulate(40, 31)
+        .iter()
+        .enumerate()
+        .map(|(k, e)| {
+            // Sensor A biased from epoch 10 to 19: isolated, then re-admitted.
+            let bias = if (10..20).contains(&k) { 40.0 } else { 0.0 };
+            let a = e.a + Vector2::new(bias, 0.0);
+            (cast(&a), cast(&e.b), cast(&e.c))
+        })
+        .collect()
+}
+
+/// A whole federated run; returns (isolations seen, re-admissions seen).
+fn run<T: Real>(zs: &Readings<T>) -> (usize, usize) {
+    let model = process::<T>();
+    let (ma, mb, mc) = (sensor_a::<T>(), sensor_b::<T>(), sensor_c::<T>());
+    let locals = (
+        Ekf::new(x0::<T>(), p0()).unwrap(),
+        SrUkf::new(x0::<T>(), p0()).unwrap(),
+        Ukf::new(x0::<T>(), p0()).unwrap(),
+    );
+    let mut fed = FederatedFilter::new(locals, Sharing::edop(), x0(), p0())
+        .unwrap()
+        .with_isolation(Isolation::new(0.01, 2, 2).unwrap());
+    let (mut isolated, mut readmitted) = (0, 0);
+    let mut was = [true; 3];
+    for (za, zb, zc) in zs {
+        fed.predict(&model, T::one()).unwrap();
+        let r = fed.locals_mut().0.update(&ma, za).unwrap();
+        fed.record(0, &r).unwrap();
+        let r = fed.locals_mut().1.update(&mb, zb).unwrap();
+        fed.record(1, &r).unwrap();
+        let r = fed.locals_mut().2.update(&mc, zc).unwrap();
+        fed.record(2, &r).unwrap();
+        let report = black_box(fed.fuse().unwrap());
+        for (w, now) in was.iter_mut().zip(report.admitted()) {
+            isolated += usize::from(*w && !now);
+            readmitted += usize::from(!*w && now);
+            *w = now;
+        }
+    }
+    // Error paths: a dimension beyond the precomputed thresholds, an
+    // indefinite local, everything isolated.
+    fed.record_nis(1, T::one(), 20).unwrap();
+    let mut bad = Matrix4::<T>::identity();
+    bad[(3, 3)] = -T::one();
+    fed.locals_mut().2.set_covariance(&bad).unwrap();
+    assert_eq!(
+        fed.fuse().unwrap_err(),
+        FusionError::NotPositiveDefinite { local: 2, index: 3 }
+    );
+    for i in 0..3 {
+        fed.record_nis(i, lit(1e6), 3).unwrap();
+        fed.record_nis(i, lit(1e6), 3).unwrap();
+    }
+    fed.locals_mut().2.set_covariance(&p0()).unwrap();
+    fed.fuse().unwrap();
+    for i in 0..3 {
+        fed.record_nis(i, lit(1e6), 3).unwrap();
+    }
+    assert_eq!(fed.fuse().unwrap_err(), FusionError::AllIsolated);
+    (isolated, readmitted)
+}
+
+#[test]
+fn a_federated_run_never_allocates_in_f64() {
+    let zs = readings::<f64>();
+    let ((isolated, readmitted), calls) = heap_calls(|| run(&zs));
+    assert_eq!(
+        (isolated, readmitted),
+        (1, 1),
+        "the biased local was isolated and re-admitted"
+    );
+    assert_eq!(calls, 0);
+}
+
+#[test]
+fn a_federated_run_never_allocates_in_f32() {
+    let zs = readings::<f32>();
+    let ((isolated, readmitted), calls) = heap_calls(|| run(&zs));
+    assert_eq!(
+        (isolated, readmitted),
+        (1, 1),
+        "the biased local was isolated and re-admitted"
+    );
+    assert_eq!(calls, 0);
+}
