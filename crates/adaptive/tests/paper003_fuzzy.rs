@@ -113,11 +113,11 @@ fn variables_and_rules_are_validated() {
 
 #[test]
 fn odometer_inference_by_hand() {
-    // dm₁ = 0.8: T = (0.85 − 0.8)/0.15 = ⅓, S = (0.8 − 0.7)/0.15 = ⅔.
+    // dm₁ = 23/30: T = (0.8 − 23/30)/0.1 = ⅓, S = (23/30 − 0.7)/0.1 = ⅔.
     // |ΔH| = 20: M = (25 − 20)/10 = ½, B = (20 − 15)/10 = ½.
     // r = 1.5: S = (2 − 1.5)/1 = ½, M = (1.5 − 1)/1 = ½.
     let engine = odometer_engine::<f64>().unwrap();
-    let inference = engine.infer(&[0.8, 20.0, 1.5]);
+    let inference = engine.infer(&[23.0 / 30.0, 20.0, 1.5]);
     let mut want = [0.0; 17];
     want[1] = 1.0 / 3.0; // T ∧ r S → S
     want[2] = 1.0 / 3.0; // T ∧ r M → T
@@ -153,7 +153,7 @@ fn odometer_inference_by_hand() {
     let (area, moment) = integrate(&pieces);
     close(area, 13.0 / 80.0, "area");
     close(moment, 41.0 / 320.0, "moment");
-    let (_, centroid) = engine.evaluate(&[0.8, 20.0, 1.5]);
+    let (_, centroid) = engine.evaluate(&[23.0 / 30.0, 20.0, 1.5]);
     close(centroid.unwrap(), 41.0 / 52.0, "centroid");
 }
 
@@ -254,7 +254,7 @@ proptest! {
     /// non-veto rule, so the output is defined).
     ///
     /// Bound. Each membership is Lipschitz with constant Lᵢ (its steepest
-    /// edge: 1/0.15, 1/10, 1), so every rule strength (a minimum) and
+    /// edge: 1/0.05 for dm₁, 1/10, 1), so every rule strength (a minimum) and
     /// every set strength (a maximum) moves by at most
     /// δ = Σᵢ Lᵢ |Δxᵢ|. Each input's sets sum to 1 with at most two
     /// non-zero, so one set per input has degree ≥ ½ and the rule for that
@@ -351,7 +351,8 @@ macro_rules! each_form_gain {
 
 #[test]
 fn gain_applied_hand_epoch() {
-    // v_SINS = (9.5, 0), v_OD = (10, 0): dm₁ = 0.95 → S = ⅓, Z = ⅔.
+    // v_SINS = (28/3, 0), v_OD = (10, 0): dm₁ = 14/15 → S = (0.95 − 14/15)/0.05
+    // = ⅓, Z = (14/15 − 0.9)/0.05 = ⅔.
     // z = ν = (−0.5, 0), C = 2I: s = √(0.25/2 / 2) = 0.25 = r → r S = 1.
     // Rules: S ∧ r S → S (⅓), Z ∧ r S → Z (⅔); nothing unusable.
     // Centroid of max(min(⅓, S), min(⅔, Z)): [0.7, 0.75] S rising 0 → ⅓;
@@ -370,13 +371,13 @@ fn gain_applied_hand_epoch() {
     let alpha = 52.0 / 55.0; // moment / area
                              // ν' = ν + (1 − α) v_OD = −0.5 + (3/55)·10 = 1/22; x⁺ = ½ ν', P⁺ = ½ I.
     let m = models();
-    let inputs = Some((Vector2::new(9.5, 0.0), Vector2::new(10.0, 0.0), 2.0));
+    let inputs = Some((Vector2::new(28.0 / 3.0, 0.0), Vector2::new(10.0, 0.0), 2.0));
     each_form_gain!(|name, f| {
         let report = epoch(&mut f, &m, inputs, Vector2::new(-0.5, 0.0));
         let a = report.adapters;
         assert_eq!(a.decision, GainDecision::Applied, "{name}");
         assert!(!a.rejected && !report.rejected, "{name}");
-        close(a.match_factor, 0.95, name);
+        close(a.match_factor, 14.0 / 15.0, name);
         close(a.heading_rate, 2.0, name);
         close(a.innovation_mean, 0.25, name);
         close(a.inference.sets[1], 1.0 / 3.0, name);

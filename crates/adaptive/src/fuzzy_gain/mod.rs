@@ -98,15 +98,15 @@ impl<T: Real, const O: usize, const R: usize> Default for FuzzyGainReport<T, O, 
 /// use kestrel_core::adapter::{GainStep, NoiseAdapter};
 /// use kestrel_core::nalgebra::{Matrix1, Vector1};
 /// let mut gain = FuzzyGain::<f64, 1>::odometer().unwrap();
-/// // v_SINS = 10, v_OD = 10.5: dm₁ = 0.952…, ν = −0.5 with C = 1.
-/// gain.set_inputs(OdometerInputs::new(10.0 / 10.5, 0.0, Vector1::new(10.5)));
+/// // v_SINS = 10, v_OD = 11: dm₁ = 0.909…, ν = −0.5 with C = 1.
+/// gain.set_inputs(OdometerInputs::new(10.0 / 11.0, 0.0, Vector1::new(11.0)));
 /// let mut step = GainStep::new(Vector1::new(-0.5), Matrix1::new(0.5), None, Matrix1::new(0.5))
 ///     .unwrap();
 /// let mut report = Default::default();
 /// gain.before_gain(&mut step, &mut report);
 /// assert_eq!(report.decision, GainDecision::Applied);
 /// assert!(report.alpha < 1.0 && report.alpha > 0.85);
-/// let corrected = -0.5 + (1.0 - report.alpha) * 10.5;
+/// let corrected = -0.5 + (1.0 - report.alpha) * 11.0;
 /// assert!((step.innovation()[0] - corrected).abs() < 1e-12);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]

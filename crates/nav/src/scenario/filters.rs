@@ -1,0 +1,104 @@
+//! The filters the papers compare, as data for a runner.
+
+/// One filter configuration. Parameters the papers leave open carry the
+/// values documented on each scenario.
+///
+/// ```
+/// use kestrel_nav::scenario::FilterKind;
+/// assert_eq!(FilterKind::IctErekf { significance: 0.05 }.label(), "ICT-EREKF");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FilterKind {
+    /// The closed-loop error-state (extended) Kalman filter without any
+    /// adaptation: paper 000's "standard KF", 002's "EKF", 003 without
+    /// fault processing, 004's "conventional KF".
+    Standard,
+    /// Paper 000: simplified Sage–Husa estimation of R combined with fading
+    /// memory triggered by the divergence test.
+    SageHusaFading {
+        /// Forgetting factor `b` of the Sage–Husa weights, in [0.95, 0.99].
+        forgetting: f64,
+        /// Reserve coefficient `γ ≥ 1` of the divergence test.
+        reserve: f64,
+        /// Upper clamp of the fading factor λ.
+        lambda_max: f64,
+    },
+    /// Paper 000's improved adaptive filter: [`SageHusaFading`](Self::SageHusaFading)
+    /// plus χ² outlier compression of the innovation.
+    ImprovedAdaptive {
+        /// Forgetting factor `b`.
+        forgetting: f64,
+        /// Reserve coefficient `γ`.
+        reserve: f64,
+        /// Upper clamp of λ.
+        lambda_max: f64,
+        /// Significance α of the χ²(m) compression threshold.
+        significance: f64,
+    },
+    /// Paper 001: federated filter, local GNSS Kalman filter plus a local
+    /// UKF on the nonlinear INS model, information sharing by EDOP.
+    FederatedUkf {
+        /// Sigma-point spread α.
+        alpha: f64,
+        /// Prior-knowledge parameter β (2 for Gaussian).
+        beta: f64,
+        /// Secondary scaling κ.
+        kappa: f64,
+    },
+    /// Paper 001: as [`FederatedUkf`](Self::FederatedUkf) with the
+    /// square-root UKF.
+    FederatedSrUkf {
+        /// Sigma-point spread α.
+        alpha: f64,
+        /// Prior-knowledge parameter β.
+        beta: f64,
+        /// Secondary scaling κ.
+        kappa: f64,
+    },
+    /// Paper 002: extended robust KF with the global and per-component
+    /// innovation χ² tests and Huber-like inflation of R.
+    IctErekf {
+        /// Significance α of the tests.
+        significance: f64,
+    },
+    /// Paper 003's baseline: the odometer is isolated while
+    /// `|v_SINS − v_OD|` exceeds `threshold` (m/s).
+    MaxThreshold {
+        /// Speed difference threshold, m/s.
+        threshold: f64,
+    },
+    /// Paper 003: fuzzy adaptive odometer gain with windowed re-estimation
+    /// of R.
+    FuzzyAdaptive {
+        /// Number of corrected innovations in the R window.
+        window: usize,
+    },
+    /// Paper 004: suboptimal (strong-tracking) fading factor.
+    StrongTrackingFading {
+        /// Forgetting factor ρ of the innovation covariance estimate.
+        rho: f64,
+        /// Softening coefficient β ≥ 1 on R.
+        softening: f64,
+    },
+}
+
+impl FilterKind {
+    /// A short label for tables and plots.
+    ///
+    /// ```
+    /// assert_eq!(kestrel_nav::scenario::FilterKind::Standard.label(), "KF");
+    /// ```
+    pub fn label(&self) -> &'static str {
+        match self {
+            Self::Standard => "KF",
+            Self::SageHusaFading { .. } => "Sage-Husa+fading",
+            Self::ImprovedAdaptive { .. } => "improved adaptive",
+            Self::FederatedUkf { .. } => "federated UKF",
+            Self::FederatedSrUkf { .. } => "federated SR-UKF",
+            Self::IctErekf { .. } => "ICT-EREKF",
+            Self::MaxThreshold { .. } => "max threshold",
+            Self::FuzzyAdaptive { .. } => "fuzzy adaptive",
+            Self::StrongTrackingFading { .. } => "fading KF",
+        }
+    }
+}
