@@ -64,7 +64,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             engine.gnss(&fix.value)?;
         }
         let t = truth.time.round();
-        if (truth.time - t).abs() < 1e-6 && t as u64 % 60 == 0 {
+        if (truth.time - t).abs() < 1e-6 && (t as u64).is_multiple_of(60) {
             let e = NavError::between(&earth, engine.solution(), &truth);
             println!(
                 "t={t:4} s  position error {:6.2} m  velocity error {:5.3} m/s  heading error {:6.3}°",

@@ -10,8 +10,6 @@
 //! threads (output capture, other tests) cannot disturb a count; a positive
 //! control shows an allocation made while armed is counted.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use std::hint::black_box;
 
 use kestrel::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
@@ -20,66 +18,14 @@ use kestrel::models::{LinearMeasurement, LinearProcess};
 use kestrel::nalgebra::{Matrix2, Matrix2x4, Matrix4, SVector, Vector2, Vector4};
 use kestrel::real::lit;
 use kestrel::{Ekf, Filter, FilterError, Real, SrUkf, Ukf};
-
-/// The system allocator, counting the calls of an armed thread.
-struct Counting;
-
-thread_local! {
-    static ARMED: Cell<bool> = const { Cell::new(false) };
-    static CALLS: Cell<usize> = const { Cell::new(0) };
-}
-
-fn note() {
-    // `try_with`: the allocator may run while thread-locals are torn down.
-    let _ = ARMED.try_with(|armed| {
-        if armed.get() {
-            CALLS.with(|c| c.set(c.get() + 1));
-        }
-    });
-}
-
-// SAFETY: every call is forwarded unchanged to `System`.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        note();
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        note();
-        unsafe { System.alloc_zeroed(layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        note();
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        note();
-        unsafe { System.dealloc(ptr, layout) }
-    }
-}
+use kestrel_testkit::{heap_calls, CountingAllocator};
 
 #[global_allocator]
-static ALLOCATOR: Counting = Counting;
-
-/// Runs `f` armed and returns its result with the number of heap calls the
-/// current thread made meanwhile.
-fn heap_calls<R>(f: impl FnOnce() -> R) -> (R, usize) {
-    CALLS.with(|c| c.set(0));
-    ARMED.with(|a| a.set(true));
-    let out = f();
-    ARMED.with(|a| a.set(false));
-    (out, CALLS.with(Cell::get))
-}
+static ALLOCATOR: CountingAllocator = CountingAllocator;
 
 #[test]
 fn positive_control_counts_an_allocation_made_while_armed() {
-    let (_, calls) = heap_calls(|| drop(black_box(Box::new(black_box(7u64)))));
-    assert_eq!(calls, 2, "one allocation and one deallocation");
-    let (v, calls) = heap_calls(|| black_box(Vec::<u8>::with_capacity(64)));
-    assert_eq!(calls, 1);
-    drop(v);
-    let (_, calls) = heap_calls(|| black_box(1 + 1));
-    assert_eq!(calls, 0);
+    kestrel_testkit::positive_control();
 }
 
 /// A test adapter touching every hook: fades the prior and the gain step,

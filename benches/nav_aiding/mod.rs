@@ -2,34 +2,24 @@
 //! engine, and a full 1 h INS/GNSS run at 200 Hz (IMU data simulated once,
 //! before timing, so only the engine is timed).
 
+// The IMU, antenna and receiver of the nav crate's aiding tests.
+#[path = "../../crates/nav/tests/aiding/tactical.rs"]
+mod tactical;
+
 use std::hint::black_box;
 use std::time::Instant;
 
 use criterion::Criterion;
 use kestrel::nav::engine::{ErrorSystem, InitialUncertainty, Ins15, LooselyCoupled};
 use kestrel::nav::measurement::{GnssAntenna, GnssFix};
-use kestrel::nav::nalgebra::{SVector, Vector3};
-use kestrel::nav::sim::{
-    sensor_rng, GnssConfig, GnssSensor, ImuErrors, ImuSensor, Segment, SensorStream, Trajectory,
-    TrajectorySpec, Vehicle,
-};
-use kestrel::nav::{Ellipsoid, Geodetic, ImuIncrement, ImuSpec, NavState, Strapdown};
+use kestrel::nav::nalgebra::SVector;
+use kestrel::nav::sim::{GnssSensor, Segment, Trajectory, TrajectorySpec, Vehicle};
+use kestrel::nav::{Ellipsoid, Geodetic, ImuIncrement, NavState, Strapdown};
 use kestrel::Ekf;
+use tactical::{gnss_config, imu_sensor, lever, spec};
 
 /// IMU rate of the run, Hz.
 const RATE: f64 = 200.0;
-
-fn spec() -> ImuSpec {
-    ImuSpec::perfect()
-        .with_gyro_bias_deg_per_h(3.0)
-        .with_gyro_arw_deg_per_sqrt_h(0.15)
-        .with_accel_bias_mg(1.0)
-        .with_accel_vrw_m_s_per_sqrt_h(0.1)
-}
-
-fn lever() -> Vector3<f64> {
-    Vector3::new(0.5, 0.3, -1.2)
-}
 
 type Engine = LooselyCoupled<f64, 15, Ins15, kestrel::form::CovarianceForm<f64, 15>>;
 
@@ -72,17 +62,8 @@ fn hour() -> (NavState, Vec<ImuIncrement>, Vec<GnssFix>) {
     let spec_t = spec_t.then(Segment::CruiseUntil { time: 3600.0 });
     let traj = Trajectory::new(&spec_t, earth).unwrap();
     let start = traj.initial_state();
-    let mut imu = ImuSensor::new(
-        ImuErrors::sample(&spec(), &mut sensor_rng(1, SensorStream::Constants)),
-        1,
-    );
-    let mut config = GnssConfig::new(
-        1.0,
-        Vector3::new(1.0, 1.0, 2.0),
-        Some(Vector3::repeat(0.05)),
-    );
-    config.lever_arm = lever();
-    let mut gnss = GnssSensor::new(config, earth, 1);
+    let mut imu = imu_sensor(1);
+    let mut gnss = GnssSensor::new(gnss_config(), earth, 1);
     let mut stream = traj.stream(RATE).unwrap();
     let (mut imus, mut fixes) = (Vec::new(), Vec::new());
     while let Some((truth, exact)) = stream.next() {

@@ -9,8 +9,6 @@
 
 mod federated_common;
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use std::hint::black_box;
 
 use federated_common::{cast, p0, process, sensor_a, sensor_b, sensor_c, simulate, x0};
@@ -18,63 +16,14 @@ use kestrel_adaptive::federated::{FederatedFilter, FusionError, Isolation, Shari
 use kestrel_core::nalgebra::{Matrix4, Vector1, Vector2, Vector3};
 use kestrel_core::real::lit;
 use kestrel_core::{Ekf, Real, SrUkf, Ukf};
-
-/// The system allocator, counting the calls of an armed thread.
-struct Counting;
-
-thread_local! {
-    static ARMED: Cell<bool> = const { Cell::new(false) };
-    static CALLS: Cell<usize> = const { Cell::new(0) };
-}
-
-fn note() {
-    // `try_with`: the allocator may run while thread-locals are torn down.
-    let _ = ARMED.try_with(|armed| {
-        if armed.get() {
-            CALLS.with(|c| c.set(c.get() + 1));
-        }
-    });
-}
-
-// SAFETY: every call is forwarded unchanged to `System`.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        note();
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        note();
-        unsafe { System.alloc_zeroed(layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        note();
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        note();
-        unsafe { System.dealloc(ptr, layout) }
-    }
-}
+use kestrel_testkit::{heap_calls, CountingAllocator};
 
 #[global_allocator]
-static ALLOCATOR: Counting = Counting;
-
-/// Runs `f` armed and returns its result with the number of heap calls the
-/// current thread made meanwhile.
-fn heap_calls<R>(f: impl FnOnce() -> R) -> (R, usize) {
-    CALLS.with(|c| c.set(0));
-    ARMED.with(|a| a.set(true));
-    let out = f();
-    ARMED.with(|a| a.set(false));
-    (out, CALLS.with(Cell::get))
-}
+static ALLOCATOR: CountingAllocator = CountingAllocator;
 
 #[test]
 fn positive_control_counts_an_allocation_made_while_armed() {
-    let (_, calls) = heap_calls(|| drop(black_box(Box::new(black_box(7u64)))));
-    assert_eq!(calls, 2, "one allocation and one deallocation");
-    let (_, calls) = heap_calls(|| black_box(1 + 1));
-    assert_eq!(calls, 0);
+    kestrel_testkit::positive_control();
 }
 
 /// Measurements in `T`, made before arming.
@@ -145,9 +94,10 @@ fn run<T: Real>(zs: &Readings<T>) -> (usize, usize) {
     (isolated, readmitted)
 }
 
-#[test]
-fn a_federated_run_never_allocates_in_f64() {
-    let zs = readings::<f64>();
+/// A whole run armed: no heap calls, and the run went through isolation
+/// and re-admission.
+fn never_allocates<T: Real>() {
+    let zs = readings::<T>();
     let ((isolated, readmitted), calls) = heap_calls(|| run(&zs));
     assert_eq!(
         (isolated, readmitted),
@@ -158,13 +108,11 @@ fn a_federated_run_never_allocates_in_f64() {
 }
 
 #[test]
+fn a_federated_run_never_allocates_in_f64() {
+    never_allocates::<f64>();
+}
+
+#[test]
 fn a_federated_run_never_allocates_in_f32() {
-    let zs = readings::<f32>();
-    let ((isolated, readmitted), calls) = heap_calls(|| run(&zs));
-    assert_eq!(
-        (isolated, readmitted),
-        (1, 1),
-        "the biased local was isolated and re-admitted"
-    );
-    assert_eq!(calls, 0);
+    never_allocates::<f32>();
 }

@@ -14,11 +14,8 @@
 mod support;
 
 use kestrel_adaptive::OutlierCompression;
-use kestrel_core::nalgebra::{Matrix2, SMatrix, SVector};
-use kestrel_core::Filter;
-use support::{cv, CvForm};
-
-type Make<F> = fn(SVector<f64, 4>, SMatrix<f64, 4, 4>) -> Filter<f64, 4, F>;
+use kestrel_core::nalgebra::Matrix2;
+use support::{cv, CvForm, Make};
 
 const ALPHA: f64 = 0.05;
 

@@ -23,14 +23,11 @@
 mod support;
 
 use kestrel_adaptive::DivergenceFading;
-use kestrel_core::nalgebra::{Matrix2, SMatrix, SVector, Vector4};
-use kestrel_core::Filter;
-use support::{cv, CvForm};
+use kestrel_core::nalgebra::Matrix2;
+use support::{cv, CvForm, Make};
 
 const STEPS: usize = 5000;
 const JUMP: usize = 500;
-
-type Make<F> = fn(SVector<f64, 4>, SMatrix<f64, 4, 4>) -> Filter<f64, 4, F>;
 
 /// The adapter of the last two claims.
 fn adapter() -> DivergenceFading<f64> {
@@ -99,37 +96,19 @@ fn no_fade_on_a_consistent_model() {
     each_form_f64!(no_fade_when_consistent);
 }
 
-fn jump_stream() -> cv::Stream {
-    let mut spec = cv::Spec::new(5, JUMP + 100, Matrix2::identity())
-        .with_jump(JUMP, Vector4::new(30.0, -30.0, 0.0, 0.0));
-    spec.q = 1e-4;
-    cv::stream(&spec)
-}
-
 fn recovers<F: CvForm<f64>>(name: &str, make: Make<F>) {
-    let stream = jump_stream();
-    let sensor = cv::sensor(&Matrix2::identity());
-    let mut nis = Vec::new();
-    let mut fades = Vec::new();
     let mut f = make(cv::x0(), cv::p0()).with_adapter(adapter());
-    support::run(&mut f, &stream, &sensor, |_, r, _| {
-        nis.push(r.nis);
-        fades.push(r.adapters.fade);
-    })
-    .unwrap();
-    assert!(
-        fades[..JUMP].iter().all(|l| *l == 1.0),
-        "{name}: no fade before the jump"
-    );
-    assert!(fades[JUMP] > 1.0, "{name}: λ = {} at the jump", fades[JUMP]);
-    let recovery = support::recovery(&nis, JUMP, 2);
-    assert!(recovery.recovered(), "{name}: {recovery:?}");
+    support::assert_fades_and_recovers(name, &mut f, JUMP, |a| a.fade);
 
     let mut plain_nis = Vec::new();
     let mut plain = make(cv::x0(), cv::p0());
-    support::run(&mut plain, &stream, &sensor, |_, r, _| {
-        plain_nis.push(r.nis)
-    })
+    let sensor = cv::sensor(&Matrix2::identity());
+    support::run(
+        &mut plain,
+        &support::jump_stream(JUMP),
+        &sensor,
+        |_, r, _| plain_nis.push(r.nis),
+    )
     .unwrap();
     let plain = support::recovery(&plain_nis, JUMP, 2);
     assert!(

@@ -11,71 +11,24 @@ use kestrel_adaptive::{
     chi_square_quantile, DivergenceFading, ImprovedAdaptive, OutlierCompression, SageHusa,
     StrongTracking,
 };
-use kestrel_core::adapter::NoiseAdapter;
-use kestrel_core::form::{PredictForm, UpdateForm};
 use kestrel_core::nalgebra::{Matrix1, Matrix2, Vector1, Vector2};
-use kestrel_core::{Filter, FilterError, UpdateReport};
+use kestrel_core::FilterError;
 use kestrel_models::{LinearMeasurement, LinearProcess};
-
-/// Agreement required of every form with the hand values (the square-root
-/// and unscented forms round differently from the scalar arithmetic).
-const TOL: f64 = 1e-12;
-
-#[track_caller]
-fn close(got: f64, want: f64, what: &str) {
-    assert!(
-        (got - want).abs() <= TOL * want.abs().max(1.0),
-        "{what}: got {got}, want {want}"
-    );
-}
+use support::hand::{close, epoch, Models};
 
 /// The scalar models `x⁻ = φ x + w`, `w ~ N(0, q)`, `z = x + v`, `v ~ N(0, r)`.
-fn scalar(phi: f64, q: f64, r: f64) -> (LinearProcess<f64, 1>, LinearMeasurement<f64, 1, 1>) {
+fn scalar(phi: f64, q: f64, r: f64) -> Models<1, 1> {
     (
         LinearProcess::new(Matrix1::new(phi), Matrix1::new(q)),
         LinearMeasurement::new(Matrix1::new(1.0), Matrix1::new(r)),
     )
 }
 
-type Scalar = (LinearProcess<f64, 1>, LinearMeasurement<f64, 1, 1>);
-
-/// Predicts and updates once with `z`.
-fn epoch<F, A>(
-    f: &mut Filter<f64, 1, F, A>,
-    (process, sensor): &Scalar,
-    z: f64,
-) -> Result<UpdateReport<f64, 1, A::Report>, FilterError>
-where
-    F: PredictForm<f64, 1, LinearProcess<f64, 1>>
-        + UpdateForm<f64, 1, LinearMeasurement<f64, 1, 1>, 1>,
-    A: NoiseAdapter<f64, 1>,
-{
-    f.predict(process, 1.0)?;
-    f.update(sensor, &Vector1::new(z))
-}
-
-/// Runs `$body` with `$f` bound to a fresh filter (x₀ = 0, P₀ = `$p0`) of
-/// each form carrying adapter `$adapter`, and `$name` naming the form.
+/// [`each_hand_form`] from x₀ = 0, P₀ = `$p0`.
 macro_rules! each_scalar_form {
-    ($p0:expr, $adapter:expr, |$name:ident, $f:ident| $body:block) => {{
-        let x0 = Vector1::new(0.0);
-        let p0 = Matrix1::new($p0);
-        {
-            let $name = "EKF";
-            let mut $f = support::ekf(x0, p0).with_adapter($adapter);
-            $body
-        }
-        {
-            let $name = "UKF";
-            let mut $f = support::ukf(x0, p0).with_adapter($adapter);
-            $body
-        }
-        {
-            let $name = "SR-UKF";
-            let mut $f = support::sr_ukf(x0, p0).with_adapter($adapter);
-            $body
-        }
-    }};
+    ($p0:expr, $($rest:tt)+) => {
+        each_hand_form!(Vector1::new(0.0), Matrix1::new($p0), $($rest)+)
+    };
 }
 
 /// The error of an out-of-range parameter.
@@ -136,7 +89,7 @@ fn compression_scales_an_outlier_to_the_threshold() {
     let adapter = OutlierCompression::<f64, 1>::new(0.05).unwrap();
     assert!((adapter.threshold() - c).abs() < 1e-9);
     each_scalar_form!(3.0, adapter, |name, f| {
-        let report = epoch(&mut f, &models, 10.0).unwrap();
+        let report = epoch(&mut f, &models, Vector1::new(10.0)).unwrap();
         let a = report.adapters;
         assert!(a.compressed, "{name}");
         close(a.statistic, 25.0, name);
@@ -156,7 +109,7 @@ fn compression_leaves_an_inlier_exactly_alone() {
         3.0,
         OutlierCompression::<f64, 1>::new(0.05).unwrap(),
         |name, f| {
-            let report = epoch(&mut f, &models, 3.0).unwrap();
+            let report = epoch(&mut f, &models, Vector1::new(3.0)).unwrap();
             assert_eq!(report.adapters.factor, 1.0, "{name}");
             assert!(!report.adapters.compressed, "{name}");
             assert_eq!(report.innovation_used, report.innovation, "{name}");
@@ -175,7 +128,7 @@ fn divergence_fading_hand_epoch() {
 
     // z = 6: νᵀν = 36 > 14; λ = (36 − 1 − 2) / 4 = 8.25, P⁻ = 34, C = 36.
     each_scalar_form!(1.0, fading, |name, f| {
-        let report = epoch(&mut f, &models, 6.0).unwrap();
+        let report = epoch(&mut f, &models, Vector1::new(6.0)).unwrap();
         let a = report.adapters;
         assert!(a.diverged, "{name}");
         close(a.statistic, 36.0, name);
@@ -189,7 +142,7 @@ fn divergence_fading_hand_epoch() {
 
     // z = 3: 9 ≤ 14, no fade: K = 5/7.
     each_scalar_form!(1.0, fading, |name, f| {
-        let report = epoch(&mut f, &models, 3.0).unwrap();
+        let report = epoch(&mut f, &models, Vector1::new(3.0)).unwrap();
         assert!(!report.adapters.diverged, "{name}");
         assert_eq!(report.adapters.fade, 1.0, "{name}");
         close(f.state()[0], 15.0 / 7.0, name);
@@ -198,7 +151,7 @@ fn divergence_fading_hand_epoch() {
     // λ_max = 4 clamps: P⁻ = 4 · 4 + 1 = 17, C = 19.
     let clamped = DivergenceFading::new(2.0, 4.0).unwrap();
     each_scalar_form!(1.0, clamped, |name, f| {
-        let report = epoch(&mut f, &models, 6.0).unwrap();
+        let report = epoch(&mut f, &models, Vector1::new(6.0)).unwrap();
         assert_eq!(report.adapters.fade, 4.0, "{name}");
         close(f.state()[0], 17.0 / 19.0 * 6.0, name);
     });
@@ -259,7 +212,7 @@ fn strong_tracking_hand_epochs() {
     let st = StrongTracking::new(0.95, 1.5).unwrap();
     each_scalar_form!(1.0, st, |name, f| {
         for (k, (z, (x, p, lambda))) in zs.iter().zip(&want).enumerate() {
-            let report = epoch(&mut f, &models, *z).unwrap();
+            let report = epoch(&mut f, &models, Vector1::new(*z)).unwrap();
             let what = format!("{name} epoch {k}");
             close(report.adapters.fade, *lambda, &what);
             close(f.state()[0], *x, &what);
@@ -277,7 +230,7 @@ fn strong_tracking_hand_epochs() {
         .unwrap();
     each_scalar_form!(1.0, st, |name, f| {
         for (z, (x, _, lambda)) in zs.iter().zip(&want) {
-            let report = epoch(&mut f, &models, *z).unwrap();
+            let report = epoch(&mut f, &models, Vector1::new(*z)).unwrap();
             assert!(report.adapters.fade <= 3.0, "{name}");
             close(report.adapters.fade, *lambda, name);
             close(f.state()[0], *x, name);
@@ -320,14 +273,14 @@ fn sage_husa_two_scalar_epochs() {
     let r2 = (1.0 - d2) * r1 + d2 * (e2 * e2 + hph2);
 
     each_scalar_form!(1.0, SageHusa::new(b).unwrap(), |name, f| {
-        let first = epoch(&mut f, &models, 2.0).unwrap();
+        let first = epoch(&mut f, &models, Vector1::new(2.0)).unwrap();
         assert!(first.adapters.estimated, "{name}");
         assert_eq!(first.adapters.count, 1, "{name}");
         close(first.adapters.weight, d1, name);
         close(first.noise[0], 1.0, name);
         close(f.adapter().estimate()[0], r1, name);
 
-        let second = epoch(&mut f, &models, 4.0).unwrap();
+        let second = epoch(&mut f, &models, Vector1::new(4.0)).unwrap();
         close(second.noise[0], r1, name);
         close(second.adapters.trace, r1, name);
         close(second.adapters.weight, d2, name);
@@ -395,11 +348,11 @@ fn sage_husa_floor_raises_the_diagonal() {
         .with_floor(Vector1::new(0.9))
         .unwrap();
     each_scalar_form!(1.0, SageHusa::new(0.5).unwrap(), |name, f| {
-        epoch(&mut f, &models, 0.0).unwrap();
+        epoch(&mut f, &models, Vector1::new(0.0)).unwrap();
         close(f.adapter().estimate()[0], 2.0 / 3.0, name);
     });
     each_scalar_form!(1.0, floored, |name, f| {
-        epoch(&mut f, &models, 0.0).unwrap();
+        epoch(&mut f, &models, Vector1::new(0.0)).unwrap();
         assert_eq!(f.adapter().estimate()[0], 0.9, "{name}");
     });
 }
@@ -427,7 +380,7 @@ fn sage_husa_after_a_fading_member_skips_the_faded_epoch() {
         SageHusa::new(0.9).unwrap(),
     );
     each_scalar_form!(1.0, tuple, |name, f| {
-        let report = epoch(&mut f, &models, 6.0).unwrap();
+        let report = epoch(&mut f, &models, Vector1::new(6.0)).unwrap();
         let (fading, sh) = report.adapters;
         close(fading.fade, 8.25, name);
         assert!(sh.skipped_for_fade && !sh.estimated, "{name}");
@@ -442,7 +395,7 @@ fn sage_husa_after_a_fading_member_skips_the_faded_epoch() {
         SageHusa::new(0.9).unwrap().with_skip_when_faded(false),
     );
     each_scalar_form!(1.0, tuple, |name, f| {
-        let report = epoch(&mut f, &models, 6.0).unwrap();
+        let report = epoch(&mut f, &models, Vector1::new(6.0)).unwrap();
         assert!(report.adapters.1.estimated, "{name}");
     });
 }
@@ -461,14 +414,14 @@ fn improved_adaptive_tests_against_the_estimate() {
     let r1 = 1.0 + 0.5 * d1;
     let adapter = ImprovedAdaptive::<f64, 1>::with_params(b, 0.05, 2.0, 100.0).unwrap();
     each_scalar_form!(1.0, adapter, |name, f| {
-        let first = epoch(&mut f, &models, 2.0).unwrap();
+        let first = epoch(&mut f, &models, Vector1::new(2.0)).unwrap();
         let (compression, fading) = first.adapters.tests;
         assert!(!compression.compressed && !fading.diverged, "{name}");
         close(fading.bound, 4.0, name);
         assert!(first.adapters.sage_husa.estimated, "{name}");
         close(f.adapter().sage_husa.estimate()[0], r1, name);
 
-        let second = epoch(&mut f, &models, 1.2).unwrap();
+        let second = epoch(&mut f, &models, Vector1::new(1.2)).unwrap();
         let (compression, fading) = second.adapters.tests;
         close(compression.statistic, 0.2 * 0.2 / (0.5 + r1), name);
         close(fading.bound, 2.0 * (0.5 + r1), name);
@@ -482,8 +435,8 @@ fn improved_adaptive_tests_against_the_estimate() {
     let cov = 0.5 + r1;
     let lambda = (c * cov - r1) / 0.5;
     each_scalar_form!(1.0, adapter, |name, f| {
-        epoch(&mut f, &models, 2.0).unwrap();
-        let report = epoch(&mut f, &models, 30.0).unwrap();
+        epoch(&mut f, &models, Vector1::new(2.0)).unwrap();
+        let report = epoch(&mut f, &models, Vector1::new(30.0)).unwrap();
         let (compression, fading) = report.adapters.tests;
         assert!(compression.compressed, "{name}");
         close(compression.statistic, 29.0 * 29.0 / cov, name);

@@ -10,10 +10,6 @@
 
 mod support;
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-use std::hint::black_box;
-
 use kestrel_adaptive::{
     DivergenceFading, ImprovedAdaptive, OutlierCompression, SageHusa, SageHusaFading,
     StrongTracking,
@@ -22,64 +18,15 @@ use kestrel_core::adapter::NoiseAdapter;
 use kestrel_core::form::{SquareRootForm, TimeUpdate};
 use kestrel_core::nalgebra::{Matrix2, SMatrix, SVector, Vector4};
 use kestrel_core::{Ekf, Filter, Real, SrUkf, Ukf};
+use kestrel_testkit::{heap_calls, CountingAllocator};
 use support::{cv, to, CvForm};
 
-/// The system allocator, counting the calls of an armed thread.
-struct Counting;
-
-thread_local! {
-    static ARMED: Cell<bool> = const { Cell::new(false) };
-    static CALLS: Cell<usize> = const { Cell::new(0) };
-}
-
-fn note() {
-    // `try_with`: the allocator may run while thread-locals are torn down.
-    let _ = ARMED.try_with(|armed| {
-        if armed.get() {
-            CALLS.with(|c| c.set(c.get() + 1));
-        }
-    });
-}
-
-// SAFETY: every call is forwarded unchanged to `System`.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        note();
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        note();
-        unsafe { System.alloc_zeroed(layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        note();
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        note();
-        unsafe { System.dealloc(ptr, layout) }
-    }
-}
-
 #[global_allocator]
-static ALLOCATOR: Counting = Counting;
-
-/// Runs `f` armed and returns its result with the number of heap calls the
-/// current thread made meanwhile.
-fn heap_calls<R>(f: impl FnOnce() -> R) -> (R, usize) {
-    CALLS.with(|c| c.set(0));
-    ARMED.with(|a| a.set(true));
-    let out = f();
-    ARMED.with(|a| a.set(false));
-    (out, CALLS.with(Cell::get))
-}
+static ALLOCATOR: CountingAllocator = CountingAllocator;
 
 #[test]
 fn positive_control_counts_an_allocation_made_while_armed() {
-    let (_, calls) = heap_calls(|| drop(black_box(Box::new(black_box(7u64)))));
-    assert_eq!(calls, 2, "one allocation and one deallocation");
-    let (_, calls) = heap_calls(|| black_box(1 + 1));
-    assert_eq!(calls, 0);
+    kestrel_testkit::positive_control();
 }
 
 const STEPS: usize = 120;

@@ -22,13 +22,11 @@ mod support;
 
 use kestrel_adaptive::{ImprovedAdaptive, SageHusaFading};
 use kestrel_core::adapter::NoiseAdapter;
-use kestrel_core::nalgebra::{Matrix2, SMatrix, SVector, Vector2, Vector4};
+use kestrel_core::nalgebra::{Matrix2, Vector2, Vector4};
 use kestrel_core::Filter;
-use support::{cv, normal, rng, CvForm};
+use support::{cv, normal, rng, CvForm, Make};
 
 const STEPS: usize = 3000;
-
-type Make<F> = fn(SVector<f64, 4>, SMatrix<f64, 4, 4>) -> Filter<f64, 4, F>;
 
 fn stream() -> cv::Stream {
     let mut rng = rng(77);

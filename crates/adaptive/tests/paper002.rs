@@ -14,13 +14,10 @@ use kestrel_adaptive::{
     chi_square_quantile, ChiSquareGate, HuberInflation, HuberReport, InflationShape,
 };
 use kestrel_core::adapter::NoiseAdapter;
-use kestrel_core::form::{PredictForm, UpdateForm};
 use kestrel_core::nalgebra::{Matrix2, Vector2};
-use kestrel_core::{Filter, FilterError, Real, UpdateReport};
-use kestrel_models::{LinearMeasurement, LinearProcess};
+use kestrel_core::{Filter, FilterError, Real};
+use support::hand::{close, epoch, planar_walk};
 use support::{cv, rms, run, symmetric_pd, CvForm};
-
-const TOL: f64 = 1e-12;
 
 /// χ²_0.95(1) = 1.959964² (normal 97.5 % quantile squared).
 const T1: f64 = 3.841_458_820_694_124;
@@ -40,65 +37,17 @@ fn paper_huber() -> (HuberInflation<f64, 2>, f64, f64) {
 }
 
 #[track_caller]
-fn close(got: f64, want: f64, what: &str) {
-    assert!(
-        (got - want).abs() <= TOL * want.abs().max(1.0),
-        "{what}: got {got}, want {want}"
-    );
-}
-
-#[track_caller]
 fn close_m(got: &Matrix2<f64>, want: &Matrix2<f64>, what: &str) {
     for (g, w) in got.iter().zip(want.iter()) {
         close(*g, *w, what);
     }
 }
 
-/// `x⁻ = x + w`, `Q = ½ I`; `z = x + v` with noise `r`.
-fn models(r: Matrix2<f64>) -> (LinearProcess<f64, 2>, LinearMeasurement<f64, 2, 2>) {
-    (
-        LinearProcess::new(Matrix2::identity(), Matrix2::identity() * 0.5),
-        LinearMeasurement::new(Matrix2::identity(), r),
-    )
-}
-
-type Models = (LinearProcess<f64, 2>, LinearMeasurement<f64, 2, 2>);
-
-fn epoch<F, A>(
-    f: &mut Filter<f64, 2, F, A>,
-    (process, sensor): &Models,
-    z: Vector2<f64>,
-) -> Result<UpdateReport<f64, 2, A::Report>, FilterError>
-where
-    F: PredictForm<f64, 2, LinearProcess<f64, 2>>
-        + UpdateForm<f64, 2, LinearMeasurement<f64, 2, 2>, 2>,
-    A: NoiseAdapter<f64, 2>,
-{
-    f.predict(process, 1.0)?;
-    f.update(sensor, &z)
-}
-
-/// Runs `$body` with `$f` a fresh filter of each form (x₀ = 0, P₀ = ½ I,
-/// so P⁻ = I) carrying `$adapter`.
+/// [`each_hand_form`] from x₀ = 0, P₀ = ½ I, so P⁻ = I.
 macro_rules! each_form_2d {
-    ($adapter:expr, |$name:ident, $f:ident| $body:block) => {{
-        let (x0, p0) = (Vector2::zeros(), Matrix2::identity() * 0.5);
-        {
-            let $name = "EKF";
-            let mut $f = support::ekf(x0, p0).with_adapter($adapter);
-            $body
-        }
-        {
-            let $name = "UKF";
-            let mut $f = support::ukf(x0, p0).with_adapter($adapter);
-            $body
-        }
-        {
-            let $name = "SR-UKF";
-            let mut $f = support::sr_ukf(x0, p0).with_adapter($adapter);
-            $body
-        }
-    }};
+    ($($rest:tt)+) => {
+        each_hand_form!(Vector2::zeros(), Matrix2::identity() * 0.5, $($rest)+)
+    };
 }
 
 #[test]
@@ -127,7 +76,7 @@ fn huber_hand_epoch_diagonal_r() {
     // T₁ = 100/2 = 50 > T1: α₁ = T1/50; T₂ = 1/2: α₂ = 1.
     // R̄ = diag(50/T1, 1), C̄ = diag(1 + 50/T1, 2):
     // x⁺ = (10/(1 + 50/T1), 1/2), P⁺ = diag(1 − 1/(1 + 50/T1), 1/2).
-    let m = models(Matrix2::identity());
+    let m = planar_walk(Matrix2::identity());
     let (huber, t1, t2) = paper_huber();
     let rbar = 50.0 / t1;
     for shape in [InflationShape::Congruence, InflationShape::Diagonal] {
@@ -160,7 +109,7 @@ fn huber_hand_epoch_full_r() {
     // T = (2·100 − 2·½·10 + 2·1)/3.75 = 192/3.75 = 51.2.
     // T₁ = 100/2 = 50 → α₁ = T1/50, T₂ = ½ → α₂ = 1.
     let r = Matrix2::new(1.0, 0.5, 0.5, 1.0);
-    let m = models(r);
+    let m = planar_walk(r);
     let (huber, t1, _) = paper_huber();
     let a1 = t1 / 50.0;
     let want = [
@@ -203,7 +152,7 @@ fn huber_global_pass_leaves_everything_bit_for_bit() {
     // ν = (2, 2): T = (8 − 2 + 8)/3.9375 ≈ 3.56 < T2.
     // ν = (3, 0): T = 18/3.9375 ≈ 4.57 < T2 although T₁ = 9/2 = 4.5 > T1:
     // the component test only runs after a global fault.
-    let m = models(Matrix2::new(1.0, 0.25, 0.25, 1.0));
+    let m = planar_walk(Matrix2::new(1.0, 0.25, 0.25, 1.0));
     for z in [Vector2::new(2.0, 2.0), Vector2::new(3.0, 0.0)] {
         each_form_2d!(HuberInflation::<f64, 2>::paper().unwrap(), |name, f| {
             let mut plain = f.clone().with_adapter(());
@@ -331,7 +280,7 @@ fn huber_rejects_twenty_sigma_outliers_in_every_form() {
 #[test]
 fn gate_hand_epochs() {
     // R = I, P⁻ = I: C = 2I.
-    let m = models(Matrix2::identity());
+    let m = planar_walk(Matrix2::identity());
     let gate = ChiSquareGate::<f64, 2>::new(0.05).unwrap();
     assert!((gate.threshold() - T2).abs() < QUANTILE_TOL);
     // z = (3, 1): T = 10/2 = 5 < T2: accepted, K = ½.

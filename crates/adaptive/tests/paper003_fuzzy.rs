@@ -23,16 +23,7 @@ use kestrel_core::nalgebra::{Matrix2, SVector, Vector2};
 use kestrel_core::{Filter, FilterError, UpdateReport};
 use kestrel_models::{LinearMeasurement, LinearProcess};
 use proptest::prelude::*;
-
-const TOL: f64 = 1e-12;
-
-#[track_caller]
-fn close(got: f64, want: f64, what: &str) {
-    assert!(
-        (got - want).abs() <= TOL * want.abs().max(1.0),
-        "{what}: got {got}, want {want}"
-    );
-}
+use support::hand::{close, planar_walk, Models};
 
 // Membership ----------------------------------------------------------------
 
@@ -297,21 +288,13 @@ proptest! {
 
 /// Velocity-error states observed directly: `Φ = I`, `Q = ½ I`, `H = I`,
 /// `R = I`; from x₀ = 0, P₀ = ½ I the prior is P⁻ = I, so C = 2I, K = ½.
-fn models() -> (LinearProcess<f64, 2>, LinearMeasurement<f64, 2, 2>) {
-    (
-        LinearProcess::new(Matrix2::identity(), Matrix2::identity() * 0.5),
-        LinearMeasurement::new(Matrix2::identity(), Matrix2::identity()),
-    )
-}
-
-type Models = (LinearProcess<f64, 2>, LinearMeasurement<f64, 2, 2>);
 type Gain = FuzzyGain<f64, 2>;
 
 /// Predicts, sets the epoch's inputs (`v_SINS`, `v_OD`, heading rate) and
 /// updates with `z = v_SINS − v_OD`.
 fn epoch<F>(
     f: &mut Filter<f64, 2, F, Gain>,
-    (process, sensor): &Models,
+    (process, sensor): &Models<2, 2>,
     inputs: Option<(Vector2<f64>, Vector2<f64>, f64)>,
     z: Vector2<f64>,
 ) -> UpdateReport<f64, 2, <Gain as NoiseAdapter<f64, 2>>::Report>
@@ -327,26 +310,16 @@ where
     f.update(sensor, &z).unwrap()
 }
 
+/// [`each_hand_form`] with the odometer gain, from x₀ = 0, P₀ = ½ I.
 macro_rules! each_form_gain {
-    (|$name:ident, $f:ident| $body:block) => {{
-        let (x0, p0) = (Vector2::zeros(), Matrix2::identity() * 0.5);
-        let gain = Gain::odometer().unwrap();
-        {
-            let $name = "EKF";
-            let mut $f = support::ekf(x0, p0).with_adapter(gain);
-            $body
-        }
-        {
-            let $name = "UKF";
-            let mut $f = support::ukf(x0, p0).with_adapter(gain);
-            $body
-        }
-        {
-            let $name = "SR-UKF";
-            let mut $f = support::sr_ukf(x0, p0).with_adapter(gain);
-            $body
-        }
-    }};
+    ($($rest:tt)+) => {
+        each_hand_form!(
+            Vector2::zeros(),
+            Matrix2::identity() * 0.5,
+            Gain::odometer().unwrap(),
+            $($rest)+
+        )
+    };
 }
 
 #[test]
@@ -370,7 +343,7 @@ fn gain_applied_hand_epoch() {
     close(moment, 13.0 / 75.0, "moment");
     let alpha = 52.0 / 55.0; // moment / area
                              // ν' = ν + (1 − α) v_OD = −0.5 + (3/55)·10 = 1/22; x⁺ = ½ ν', P⁺ = ½ I.
-    let m = models();
+    let m = planar_walk(Matrix2::identity());
     let inputs = Some((Vector2::new(28.0 / 3.0, 0.0), Vector2::new(10.0, 0.0), 2.0));
     each_form_gain!(|name, f| {
         let report = epoch(&mut f, &m, inputs, Vector2::new(-0.5, 0.0));
@@ -405,7 +378,7 @@ fn gain_applied_hand_epoch() {
 
 #[test]
 fn gain_rejections_hand_epochs() {
-    let m = models();
+    let m = planar_walk(Matrix2::identity());
     // (v_SINS, v_OD, |ΔH|, z, what fires)
     let cases = [
         // Side-slip: dm₁ = 11.5/10 = 1.15 (B = 1), |ΔH| = 30 (B = 1), ν

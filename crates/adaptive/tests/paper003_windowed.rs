@@ -17,37 +17,14 @@ use kestrel_core::nalgebra::{Matrix1, Matrix2, Matrix3, SMatrix, SVector, Vector
 use kestrel_core::{Filter, FilterError, Real};
 use kestrel_models::{LinearMeasurement, LinearProcess};
 use proptest::prelude::*;
+use support::hand::close;
 use support::{cv, mat64, run, symmetric_pd, to, CvForm};
 
-const TOL: f64 = 1e-12;
-
-#[track_caller]
-fn close(got: f64, want: f64, what: &str) {
-    assert!(
-        (got - want).abs() <= TOL * want.abs().max(1.0),
-        "{what}: got {got}, want {want}"
-    );
-}
-
+/// [`each_hand_form`] from x₀ = 0, P₀ = ½.
 macro_rules! each_scalar_form {
-    ($adapter:expr, |$name:ident, $f:ident| $body:block) => {{
-        let (x0, p0) = (Vector1::new(0.0), Matrix1::new(0.5));
-        {
-            let $name = "EKF";
-            let mut $f = support::ekf(x0, p0).with_adapter($adapter);
-            $body
-        }
-        {
-            let $name = "UKF";
-            let mut $f = support::ukf(x0, p0).with_adapter($adapter);
-            $body
-        }
-        {
-            let $name = "SR-UKF";
-            let mut $f = support::sr_ukf(x0, p0).with_adapter($adapter);
-            $body
-        }
-    }};
+    ($($rest:tt)+) => {
+        each_hand_form!(Vector1::new(0.0), Matrix1::new(0.5), $($rest)+)
+    };
 }
 
 #[test]

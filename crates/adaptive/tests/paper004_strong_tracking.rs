@@ -24,17 +24,14 @@
 mod support;
 
 use kestrel_adaptive::StrongTracking;
-use kestrel_core::nalgebra::{Matrix2, SMatrix, SVector, Vector4};
-use kestrel_core::Filter;
+use kestrel_core::nalgebra::Matrix2;
 use rand::RngExt;
-use support::{cv, CvForm};
+use support::{cv, CvForm, Make};
 
 const STEPS: usize = 5000;
 const JUMP: usize = 500;
 const RHO: f64 = 0.95;
 const BETA: f64 = 10.0;
-
-type Make<F> = fn(SVector<f64, 4>, SMatrix<f64, 4, 4>) -> Filter<f64, 4, F>;
 
 /// `P(V > t)` for the stationary weighted mean `V = (ρ V + X) / (1 + ρ)` of
 /// `X ~ χ²(2)` (exponential with mean 2), from `draws` Monte-Carlo steps.
@@ -117,30 +114,8 @@ fn no_fade_on_a_consistent_model() {
 }
 
 fn recovers<F: CvForm<f64>>(name: &str, make: Make<F>) {
-    let mut spec = cv::Spec::new(5, JUMP + 100, Matrix2::identity())
-        .with_jump(JUMP, Vector4::new(30.0, -30.0, 0.0, 0.0));
-    spec.q = 1e-4;
-    let stream = cv::stream(&spec);
-    let mut nis = Vec::new();
-    let mut fades = Vec::new();
     let mut f = make(cv::x0(), cv::p0()).with_adapter(StrongTracking::new(RHO, BETA).unwrap());
-    support::run(
-        &mut f,
-        &stream,
-        &cv::sensor(&Matrix2::identity()),
-        |_, r, _| {
-            nis.push(r.nis);
-            fades.push(r.adapters.fade);
-        },
-    )
-    .unwrap();
-    assert!(
-        fades[..JUMP].iter().all(|l| *l == 1.0),
-        "{name}: no fade before the jump"
-    );
-    assert!(fades[JUMP] > 1.0, "{name}: λ = {} at the jump", fades[JUMP]);
-    let recovery = support::recovery(&nis, JUMP, 2);
-    assert!(recovery.recovered(), "{name}: {recovery:?}");
+    support::assert_fades_and_recovers(name, &mut f, JUMP, |a| a.fade);
 }
 
 #[test]

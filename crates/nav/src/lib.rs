@@ -15,6 +15,7 @@ pub mod correction;
 pub mod earth;
 pub mod engine;
 pub mod error_model;
+pub mod experiment;
 pub mod geodetic;
 pub mod imu;
 pub mod imu_spec;

@@ -4,6 +4,7 @@
 
 mod aiding;
 
+use aiding::tactical::{gnss_config, imu_sensor, lever, spec, uncertainty};
 use aiding::{drive, perturb, record, Normal, Sample};
 use kestrel_adaptive::{ChiSquareGate, HuberInflation};
 use kestrel_core::form::PredictForm;
@@ -12,10 +13,7 @@ use kestrel_nav::engine::{Epoch, ErrorSystem, InitialUncertainty, Ins15, Loosely
 use kestrel_nav::error_model::{ErrorModel15, ForcingMean};
 use kestrel_nav::measurement::{GnssAntenna, GnssFix, InsContext};
 use kestrel_nav::nalgebra::{SMatrix, SVector, Vector3};
-use kestrel_nav::sim::{
-    sensor_rng, GnssConfig, GnssSensor, ImuErrors, ImuSensor, Segment, SensorStream, TimeWindow,
-    TrajectorySpec, Vehicle,
-};
+use kestrel_nav::sim::{GnssConfig, GnssSensor, Segment, TimeWindow, TrajectorySpec, Vehicle};
 use kestrel_nav::{
     feedback15, Ellipsoid, Geodetic, ImuBiases, ImuIncrement, ImuSpec, NavError, NavState,
     Strapdown,
@@ -23,43 +21,18 @@ use kestrel_nav::{
 
 const RATE: f64 = 100.0;
 
-fn spec() -> ImuSpec {
-    ImuSpec::perfect()
-        .with_gyro_bias_deg_per_h(3.0)
-        .with_gyro_arw_deg_per_sqrt_h(0.15)
-        .with_accel_bias_mg(1.0)
-        .with_accel_vrw_m_s_per_sqrt_h(0.1)
-}
-
-fn lever() -> Vector3<f64> {
-    Vector3::new(0.5, 0.3, -1.2)
-}
-
-fn uncertainty() -> InitialUncertainty {
-    InitialUncertainty {
-        att: Vector3::new(0.05, 0.05, 0.5).map(f64::to_radians),
-        vel: Vector3::repeat(0.1),
-        pos: Vector3::repeat(2.0),
-    }
-}
-
 /// Noisy IMU increments and GNSS fixes of one seeded run over `samples`.
 fn sensors(
     seed: u64,
     samples: &[Sample],
     outages: Vec<TimeWindow>,
 ) -> (Vec<ImuIncrement>, Vec<GnssFix>) {
-    let earth = Ellipsoid::wgs84();
-    let errors = ImuErrors::sample(&spec(), &mut sensor_rng(seed, SensorStream::Constants));
-    let mut imu = ImuSensor::new(errors, seed);
-    let mut config = GnssConfig::new(
-        1.0,
-        Vector3::new(1.0, 1.0, 2.0),
-        Some(Vector3::repeat(0.05)),
-    );
-    config.lever_arm = lever();
-    config.outages = outages;
-    let mut gnss = GnssSensor::new(config, earth, seed);
+    let mut imu = imu_sensor(seed);
+    let config = GnssConfig {
+        outages,
+        ..gnss_config()
+    };
+    let mut gnss = GnssSensor::new(config, Ellipsoid::wgs84(), seed);
     let imus = samples.iter().map(|s| imu.corrupt(&s.imu)).collect();
     let fixes = samples
         .iter()

@@ -4,8 +4,6 @@
 //! odometer updates run armed with a count of zero (covariance form and
 //! SR-UKF, with and without an adapter).
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use std::hint::black_box;
 
 use kestrel_adaptive::ChiSquareGate;
@@ -15,57 +13,14 @@ use kestrel_nav::measurement::{GnssAntenna, GnssFix, Odometer, OdometerReading};
 use kestrel_nav::nalgebra::{SVector, Vector3};
 use kestrel_nav::odometer::{InsOdometer16, ScaleFactorProcess};
 use kestrel_nav::{Ellipsoid, Euler, Geodetic, ImuIncrement, ImuSpec, NavState, Strapdown};
-
-struct Counting;
-
-thread_local! {
-    static ARMED: Cell<bool> = const { Cell::new(false) };
-    static CALLS: Cell<usize> = const { Cell::new(0) };
-}
-
-fn note() {
-    let _ = ARMED.try_with(|armed| {
-        if armed.get() {
-            CALLS.with(|c| c.set(c.get() + 1));
-        }
-    });
-}
-
-// SAFETY: every call is forwarded unchanged to `System`.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        note();
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        note();
-        unsafe { System.alloc_zeroed(layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        note();
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        note();
-        unsafe { System.dealloc(ptr, layout) }
-    }
-}
+use kestrel_testkit::{heap_calls, CountingAllocator};
 
 #[global_allocator]
-static ALLOCATOR: Counting = Counting;
-
-fn heap_calls<R>(f: impl FnOnce() -> R) -> (R, usize) {
-    CALLS.with(|c| c.set(0));
-    ARMED.with(|a| a.set(true));
-    let out = f();
-    ARMED.with(|a| a.set(false));
-    (out, CALLS.with(Cell::get))
-}
+static ALLOCATOR: CountingAllocator = CountingAllocator;
 
 #[test]
 fn positive_control_counts_an_allocation() {
-    let (_, calls) = heap_calls(|| drop(black_box(Box::new(black_box(3u64)))));
-    assert_eq!(calls, 2);
+    kestrel_testkit::positive_control();
 }
 
 fn start() -> NavState {

@@ -20,38 +20,19 @@
 
 mod aiding;
 
+use aiding::tactical::{gnss_config, imu_sensor, lever, spec, uncertainty};
 use aiding::{drive, nav_nees, perturb, record, Normal, Sample};
 use kestrel_adaptive::chi_square_quantile;
 use kestrel_core::Ekf;
-use kestrel_nav::engine::{ErrorSystem, InitialUncertainty, Ins15, LooselyCoupled};
+use kestrel_nav::engine::{ErrorSystem, Ins15, LooselyCoupled};
 use kestrel_nav::measurement::GnssAntenna;
-use kestrel_nav::nalgebra::{SVector, Vector3};
-use kestrel_nav::sim::{sensor_rng, GnssConfig, GnssSensor, ImuErrors, ImuSensor, SensorStream};
-use kestrel_nav::{Ellipsoid, Geodetic, ImuSpec, Strapdown};
+use kestrel_nav::nalgebra::SVector;
+use kestrel_nav::sim::GnssSensor;
+use kestrel_nav::{Ellipsoid, Geodetic, Strapdown};
 
 const RATE: f64 = 100.0;
 const RUNS: usize = 20;
 const MINUTES: usize = 20;
-
-fn spec() -> ImuSpec {
-    ImuSpec::perfect()
-        .with_gyro_bias_deg_per_h(3.0)
-        .with_gyro_arw_deg_per_sqrt_h(0.15)
-        .with_accel_bias_mg(1.0)
-        .with_accel_vrw_m_s_per_sqrt_h(0.1)
-}
-
-fn lever() -> Vector3<f64> {
-    Vector3::new(0.5, 0.3, -1.2)
-}
-
-fn uncertainty() -> InitialUncertainty {
-    InitialUncertainty {
-        att: Vector3::new(0.05, 0.05, 0.5).map(f64::to_radians),
-        vel: Vector3::repeat(0.1),
-        pos: Vector3::repeat(2.0),
-    }
-}
 
 /// Per epoch and block: the NEES of each run, summed.
 struct RunOutput {
@@ -64,18 +45,11 @@ struct RunOutput {
 
 fn run(seed: u64, samples: &[Sample], start: &kestrel_nav::NavState) -> RunOutput {
     let earth = Ellipsoid::wgs84();
-    let spec = spec();
-    let errors = ImuErrors::sample(&spec, &mut sensor_rng(seed, SensorStream::Constants));
-    let mut imu = ImuSensor::new(errors, seed);
-    let mut config = GnssConfig::new(
-        1.0,
-        Vector3::new(1.0, 1.0, 2.0),
-        Some(Vector3::repeat(0.05)),
-    );
-    config.lever_arm = lever();
-    let mut gnss = GnssSensor::new(config, earth, seed);
+    let mut imu = imu_sensor(seed);
+    let errors = *imu.errors();
+    let mut gnss = GnssSensor::new(gnss_config(), earth, seed);
 
-    let system = Ins15::new(spec);
+    let system = Ins15::new(spec());
     let p0 = system.initial_covariance(&uncertainty());
     let initial = perturb(
         &earth,

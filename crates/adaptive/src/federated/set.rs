@@ -114,16 +114,28 @@ fn local_error(local: usize) -> impl Fn(FilterError) -> FusionError {
     move |error| FusionError::Local { local, error }
 }
 
+/// `Some` of `$call` on tuple element `local` (bound to `$f`), `None` past
+/// the last of the indices `$idx`: a tuple's elements differ in type, so
+/// each index is its own match arm.
+macro_rules! at_index {
+    ($tuple:expr, $local:expr, |$f:ident| $call:expr; $($idx:tt)+) => {
+        match $local {
+            $($idx => {
+                let $f = &$tuple.$idx;
+                Some($call)
+            })+
+            _ => None,
+        }
+    };
+}
+
 macro_rules! tuple_set {
     ($count:literal; $($name:ident $idx:tt),+) => {
         impl<T: Real, const N: usize, $($name: LocalFilter<T, N>),+> LocalSet<T, N, $count>
             for ($($name,)+)
         {
             fn estimate(&self, local: usize) -> Option<(SVector<T, N>, SMatrix<T, N, N>)> {
-                match local {
-                    $($idx => Some(self.$idx.estimate()),)+
-                    _ => None,
-                }
+                at_index!(self, local, |f| f.estimate(); $($idx)+)
             }
 
             fn deviation(
@@ -132,10 +144,7 @@ macro_rules! tuple_set {
                 x: &SVector<T, N>,
                 reference: &SVector<T, N>,
             ) -> Option<SVector<T, N>> {
-                match local {
-                    $($idx => Some(self.$idx.deviation(x, reference)),)+
-                    _ => None,
-                }
+                at_index!(self, local, |f| f.deviation(x, reference); $($idx)+)
             }
 
             fn moved(
@@ -144,10 +153,7 @@ macro_rules! tuple_set {
                 x: &SVector<T, N>,
                 dx: &SVector<T, N>,
             ) -> Option<SVector<T, N>> {
-                match local {
-                    $($idx => Some(self.$idx.moved(x, dx)),)+
-                    _ => None,
-                }
+                at_index!(self, local, |f| f.moved(x, dx); $($idx)+)
             }
 
             fn reset(

@@ -1,13 +1,16 @@
 //! Helpers shared by the adapter tests: seeded noise, a planar
 //! constant-velocity target observed in position, measurement streams with
 //! outliers, a changed noise level or an unmodelled jump, a runner that
-//! works with every form in `f32` and `f64`, and matrix checks.
+//! works with every form in `f32` and `f64`, matrix checks, and the
+//! helpers of hand-computed epochs ([`hand`]).
 //!
 //! Each test binary uses only part of this module.
 #![allow(dead_code)]
 
 pub mod cv;
+pub mod hand;
 
+use kestrel_core::adapter::NoiseAdapter;
 use kestrel_core::form::{PredictForm, UpdateForm};
 use kestrel_core::nalgebra::{SMatrix, SVector};
 use kestrel_core::{Ekf, Filter, Real, SrUkf, Ukf};
@@ -79,6 +82,11 @@ macro_rules! each_form_f64 {
     }};
 }
 
+/// A filter constructor of the [`cv`] state size in `f64`, as the
+/// [`each_form_f64`] runner passes it.
+pub type Make<F> =
+    fn(SVector<f64, { cv::N }>, SMatrix<f64, { cv::N }, { cv::N }>) -> Filter<f64, { cv::N }, F>;
+
 /// A form that runs the linear models of [`cv`].
 pub trait CvForm<T: Real>: PredictForm<T, { cv::N }, kestrel_models::LinearProcess<T, { cv::N }>>
     + UpdateForm<T, { cv::N }, kestrel_models::LinearMeasurement<T, { cv::N }, { cv::M }>, { cv::M }>
@@ -111,7 +119,7 @@ pub fn rms(errors: &[f64]) -> f64 {
 /// Runs `filter` over `stream` (predict with `dt = 1`, update), returning the
 /// position error norm after each update, or the first error. `check` sees
 /// every update's report and the filter after it.
-pub fn run<T: Real, F: CvForm<T>, A: kestrel_core::adapter::NoiseAdapter<T, { cv::M }>>(
+pub fn run<T: Real, F: CvForm<T>, A: NoiseAdapter<T, { cv::M }>>(
     filter: &mut Filter<T, { cv::N }, F, A>,
     stream: &cv::Stream,
     sensor: &kestrel_models::LinearMeasurement<T, { cv::N }, { cv::M }>,
@@ -146,6 +154,45 @@ pub fn recovery(nis: &[f64], jump: usize, m: usize) -> Recovery {
         window_mean: nis[jump + 11..=jump + 20].iter().sum::<f64>() / 10.0,
         window_bound: window,
     }
+}
+
+/// The step-change stream: `jump + 100` epochs of the [`cv`] target with
+/// `R = I` and `q = 10⁻⁴`, whose true position jumps by (30, −30) (30 σ per
+/// axis) at epoch `jump`.
+pub fn jump_stream(jump: usize) -> cv::Stream {
+    let mut spec = cv::Spec::new(5, jump + 100, kestrel_core::nalgebra::Matrix2::identity())
+        .with_jump(
+            jump,
+            kestrel_core::nalgebra::Vector4::new(30.0, -30.0, 0.0, 0.0),
+        );
+    spec.q = 1e-4;
+    cv::stream(&spec)
+}
+
+/// Runs the fading `filter` over [`jump_stream`]`(jump)` and asserts that
+/// it does not fade before the jump, fades at it (`fade` reads `λ` from the
+/// adapter's report), and [`recovery`] says it is back within 20 epochs.
+pub fn assert_fades_and_recovers<F: CvForm<f64>, A: NoiseAdapter<f64, { cv::M }>>(
+    name: &str,
+    filter: &mut Filter<f64, { cv::N }, F, A>,
+    jump: usize,
+    fade: impl Fn(&A::Report) -> f64,
+) {
+    let mut nis = Vec::new();
+    let mut fades = Vec::new();
+    let sensor = cv::sensor(&kestrel_core::nalgebra::Matrix2::identity());
+    run(filter, &jump_stream(jump), &sensor, |_, r, _| {
+        nis.push(r.nis);
+        fades.push(fade(&r.adapters));
+    })
+    .unwrap();
+    assert!(
+        fades[..jump].iter().all(|l| *l == 1.0),
+        "{name}: no fade before the jump"
+    );
+    assert!(fades[jump] > 1.0, "{name}: λ = {} at the jump", fades[jump]);
+    let recovery = recovery(&nis, jump, 2);
+    assert!(recovery.recovered(), "{name}: {recovery:?}");
 }
 
 /// See [`recovery`].

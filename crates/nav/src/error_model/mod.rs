@@ -7,8 +7,9 @@
 //! - sensor errors: `measured = true + error`, estimated and fed back.
 //!
 //! Models are built per propagation interval from the navigation solution
-//! and the (mean) specific force: continuous `F` from [`nav_error_dynamics`],
-//! discretised by [`discretise`] (second-order `Φ`, trapezoidal `Q_d`). In
+//! and the (mean) specific force: continuous `F` from [`nav_error_dynamics`]
+//! and the sensor errors placed by an [`InertialLayout`], discretised by
+//! [`discretise`] (second-order `Φ`, trapezoidal `Q_d`). In
 //! closed loop the error state is reset to zero after each feedback, so the
 //! filter's `propagate(x) = Φ x` acts on zero and only the covariance moves.
 
@@ -17,9 +18,11 @@ mod dynamics;
 pub mod eighteen;
 pub mod fifteen;
 mod forcing;
+mod inertial;
 
 pub use discrete::{discretise, ErrorStateModel};
 pub use dynamics::nav_error_dynamics;
-pub use eighteen::{continuous18, continuous18_with, ErrorModel18};
-pub use fifteen::{continuous15, continuous15_with, ErrorModel15};
+pub use eighteen::ErrorModel18;
+pub use fifteen::ErrorModel15;
 pub use forcing::ForcingMean;
+pub use inertial::InertialLayout;

@@ -5,8 +5,7 @@ use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 use crate::earth::Ellipsoid;
 use crate::engine::{ErrorSystem, InitialUncertainty, Ins15};
-use crate::error_model::fifteen::continuous15_with;
-use crate::error_model::{ErrorStateModel, ForcingMean};
+use crate::error_model::{ErrorModel15, ErrorStateModel, ForcingMean};
 use crate::imu_spec::ImuSpec;
 use crate::measurement::ErrorLayout;
 use crate::state::NavState;
@@ -123,7 +122,7 @@ impl InsOdometer16 {
         f_ned: &Vector3<f64>,
         dt: f64,
     ) -> ErrorStateModel<16> {
-        let (f15, q15) = continuous15_with(earth, &self.spec, nav, c_bn, f_ned);
+        let (f15, q15) = ErrorModel15::continuous_with(earth, &self.spec, nav, c_bn, f_ned);
         let mut f = SMatrix::<f64, 16, 16>::zeros();
         f.fixed_view_mut::<15, 15>(0, 0).copy_from(&f15);
         let mut q = SVector::<f64, 16>::zeros();

@@ -4,6 +4,7 @@
 #![allow(dead_code)]
 
 pub mod dr;
+pub mod tactical;
 
 use kestrel_nav::engine::InitialUncertainty;
 use kestrel_nav::nalgebra::{SMatrix, Vector3};

@@ -4,6 +4,7 @@
 use nalgebra::Vector3;
 
 use super::rng::{normal3, sensor_rng, SensorStream, SimRng};
+use super::schedule::Schedule;
 use crate::attitude::correct_attitude;
 use crate::measurement::AttitudeFix;
 use crate::state::NavState;
@@ -56,7 +57,7 @@ impl AttitudeConfig {
 pub struct AttitudeSensor {
     config: AttitudeConfig,
     rng: SimRng,
-    next: u64,
+    schedule: Schedule,
 }
 
 impl AttitudeSensor {
@@ -71,7 +72,7 @@ impl AttitudeSensor {
         Self {
             config,
             rng: sensor_rng(seed, SensorStream::Attitude),
-            next: 1,
+            schedule: Schedule::new(),
         }
     }
 
@@ -96,15 +97,10 @@ impl AttitudeSensor {
     /// assert!(a.sample(&s).is_none());
     /// ```
     pub fn sample(&mut self, truth: &NavState) -> Option<AttitudeFix> {
-        let rate = self.config.rate;
-        if !(rate.is_finite() && rate > 0.0) {
-            return None;
-        }
         let t = truth.time;
-        if t < self.next as f64 / rate - 1e-9 {
+        if !self.schedule.due(t, self.config.rate) {
             return None;
         }
-        self.next = ((t * rate + 1e-9).floor() as u64).max(self.next) + 1;
         // Attitude error φ: C_b^n(measured) = exp(−[φ×]) C_b^n(true).
         let phi = self.config.std.component_mul(&normal3(&mut self.rng));
         Some(AttitudeFix::new(

@@ -6,6 +6,7 @@ use rand_distr::UnitSphere;
 
 use super::gnss_config::{GnssConfig, OutlierKind, ReportedStd};
 use super::rng::{normal3, sensor_rng, uniform, SensorStream, SimRng};
+use super::schedule::Schedule;
 use super::simulated::Simulated;
 use crate::earth::Ellipsoid;
 use crate::geodetic::Geodetic;
@@ -39,8 +40,7 @@ pub struct GnssSensor {
     earth: Ellipsoid,
     rng: SimRng,
     outlier_rng: SimRng,
-    /// Index of the next fix (fix `k` falls at `k / rate`).
-    next: u64,
+    schedule: Schedule,
 }
 
 impl GnssSensor {
@@ -57,7 +57,7 @@ impl GnssSensor {
             earth,
             rng: sensor_rng(seed, SensorStream::Gnss),
             outlier_rng: sensor_rng(seed, SensorStream::GnssOutliers),
-            next: 1,
+            schedule: Schedule::new(),
         }
     }
 
@@ -123,16 +123,10 @@ impl GnssSensor {
         truth: &NavState,
         omega_nb: &Vector3<f64>,
     ) -> Option<Simulated<GnssFix>> {
-        let rate = self.config.rate;
-        if !(rate.is_finite() && rate > 0.0) {
-            return None;
-        }
         let t = truth.time;
-        if t < self.next as f64 / rate - 1e-9 {
+        if !self.schedule.due(t, self.config.rate) {
             return None;
         }
-        // Catch up if epochs were skipped; one fix per call.
-        self.next = ((t * rate + 1e-9).floor() as u64).max(self.next) + 1;
 
         let (std_p, std_v) = self.config.noise_at(t);
         let mut err_p = std_p.component_mul(&normal3(&mut self.rng));

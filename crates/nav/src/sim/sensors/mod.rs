@@ -9,6 +9,7 @@ mod imu_errors;
 mod markov;
 mod odometer;
 mod rng;
+mod schedule;
 mod simulated;
 mod window;
 

@@ -4,6 +4,7 @@ use nalgebra::Vector3;
 
 use super::markov::GaussMarkov;
 use super::rng::{normal, sensor_rng, uniform, SensorStream, SimRng};
+use super::schedule::Schedule;
 use super::simulated::Simulated;
 use super::window::TimeWindow;
 use crate::earth::Ellipsoid;
@@ -179,7 +180,7 @@ pub struct OdometerSensor {
     rng: SimRng,
     fault_rng: SimRng,
     markov: GaussMarkov,
-    next: u64,
+    schedule: Schedule,
     last_time: f64,
 }
 
@@ -200,7 +201,7 @@ impl OdometerSensor {
             rng,
             fault_rng: sensor_rng(seed, SensorStream::OdometerFaults),
             markov,
-            next: 1,
+            schedule: Schedule::new(),
             last_time: 0.0,
         }
     }
@@ -285,15 +286,10 @@ impl OdometerSensor {
         truth: &NavState,
         motion: &Motion,
     ) -> Option<Simulated<OdometerReading>> {
-        let rate = self.config.rate;
-        if !(rate.is_finite() && rate > 0.0) {
-            return None;
-        }
         let t = truth.time;
-        if t < self.next as f64 / rate - 1e-9 {
+        if !self.schedule.due(t, self.config.rate) {
             return None;
         }
-        self.next = ((t * rate + 1e-9).floor() as u64).max(self.next) + 1;
         let dt = (t - self.last_time).max(0.0);
         self.last_time = t;
         self.markov.step(dt, &mut self.rng);

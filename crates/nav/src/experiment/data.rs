@@ -1,0 +1,172 @@
+//! The simulated data of a run: truth, corrupted IMU increments and the
+//! aiding sensors, all from the seed and the truth only.
+
+use super::error::RunError;
+use super::options::RunOptions;
+use crate::imu::ImuIncrement;
+use crate::measurement::{AttitudeFix, GnssFix, OdometerReading};
+use crate::scenario::Scenario;
+use crate::sim::{AttitudeSensor, GnssSensor, ImuSensor, ImuStream, OdometerSensor, Simulated};
+use crate::state::NavState;
+
+/// One IMU sample of a simulation and the sensor readings due at it.
+///
+/// ```
+/// use kestrel_nav::experiment::{RunOptions, Simulation};
+/// let s = kestrel_nav::scenario::by_name("003").unwrap();
+/// let first = Simulation::new(&s, 3, &RunOptions::default()).unwrap().next().unwrap();
+/// assert_eq!(first.truth.time, first.imu.time);
+/// assert!(first.gnss.is_none() && first.attitude.is_none());
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct SensorSample {
+    /// The true state at the end of the increment.
+    pub truth: NavState,
+    /// The IMU increment as the (erroneous) IMU delivers it.
+    pub imu: ImuIncrement,
+    /// The GNSS fix due at this sample, if any.
+    pub gnss: Option<Simulated<GnssFix>>,
+    /// The attitude reference reading due at this sample, if any.
+    pub attitude: Option<AttitudeFix>,
+    /// The odometer reading due at this sample, if any.
+    pub odometer: Option<Simulated<OdometerReading>>,
+}
+
+/// The sensor data of a scenario for a seed, sample by sample.
+///
+/// Each sensor draws from its own seeded stream and from the truth, so the
+/// data does not depend on who consumes it: every filter of a run sees the
+/// same samples for the same seed.
+///
+/// ```
+/// use kestrel_nav::experiment::{RunOptions, Simulation};
+/// let s = kestrel_nav::scenario::by_name("000").unwrap();
+/// let opts = RunOptions::default().with_duration(2.0);
+/// let a: Vec<_> = Simulation::new(&s, 7, &opts).unwrap().collect();
+/// let b: Vec<_> = Simulation::new(&s, 7, &opts).unwrap().collect();
+/// assert_eq!(a.len(), 400); // 2 s at 200 Hz
+/// assert!(a.iter().zip(&b).all(|(x, y)| x.imu == y.imu && x.gnss == y.gnss));
+/// assert_eq!(a.iter().filter(|x| x.gnss.is_some()).count(), 2);
+/// ```
+#[derive(Debug)]
+pub struct Simulation {
+    stream: ImuStream,
+    start: NavState,
+    end: f64,
+    imu: ImuSensor,
+    gnss: Option<GnssSensor>,
+    attitude: Option<AttitudeSensor>,
+    odometer: Option<OdometerSensor>,
+}
+
+impl Simulation {
+    /// The simulation of `scenario` with noise from `seed`, limited to
+    /// `options.duration` and at `options.imu_rate` if given.
+    ///
+    /// # Errors
+    /// [`RunError::Trajectory`] for an invalid trajectory or rate.
+    pub fn new(scenario: &Scenario, seed: u64, options: &RunOptions) -> Result<Self, RunError> {
+        let traj = scenario.trajectory()?;
+        let start = traj.initial_state();
+        let end = options
+            .duration
+            .map_or(traj.duration(), |d| d.min(traj.duration()));
+        let rate = options.imu_rate.unwrap_or(scenario.imu_rate);
+        Ok(Self {
+            stream: traj.into_stream(rate)?,
+            start,
+            end: start.time + end,
+            imu: scenario.imu_sensor(seed),
+            gnss: scenario.gnss_sensor(seed),
+            attitude: scenario.attitude_sensor(seed),
+            odometer: scenario.odometer_sensor(seed),
+        })
+    }
+
+    /// The true initial state.
+    ///
+    /// ```
+    /// # use kestrel_nav::experiment::{RunOptions, Simulation};
+    /// let s = kestrel_nav::scenario::by_name("003").unwrap();
+    /// let sim = Simulation::new(&s, 1, &RunOptions::default()).unwrap();
+    /// assert_eq!(sim.initial_truth().time, 0.0);
+    /// ```
+    pub fn initial_truth(&self) -> NavState {
+        self.start
+    }
+}
+
+impl Iterator for Simulation {
+    type Item = SensorSample;
+
+    fn next(&mut self) -> Option<SensorSample> {
+        let (truth, exact) = self.stream.next()?;
+        // Half a microsecond absorbs the rounding of sample times.
+        if truth.time > self.end + 5e-7 {
+            return None;
+        }
+        let motion = *self.stream.motion();
+        Some(SensorSample {
+            truth,
+            imu: self.imu.corrupt(&exact),
+            gnss: self
+                .gnss
+                .as_mut()
+                .and_then(|g| g.sample(&truth, &motion.omega_nb)),
+            attitude: self.attitude.as_mut().and_then(|a| a.sample(&truth)),
+            odometer: self
+                .odometer
+                .as_mut()
+                .and_then(|o| o.sample(&truth, &motion)),
+        })
+    }
+}
+
+/// FNV-1a over the bits of the data a filter consumes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Digest(u64);
+
+impl Default for Digest {
+    fn default() -> Self {
+        Self(0xcbf2_9ce4_8422_2325)
+    }
+}
+
+impl Digest {
+    fn word(&mut self, w: u64) {
+        for b in w.to_le_bytes() {
+            self.0 ^= u64::from(b);
+            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+
+    fn values(&mut self, v: &[f64]) {
+        v.iter().for_each(|x| self.word(x.to_bits()));
+    }
+
+    /// Adds the IMU increment and the aiding readings of `s`.
+    pub(crate) fn add(&mut self, s: &SensorSample) {
+        let i = &s.imu;
+        self.values(&[i.time, i.dt]);
+        self.values(i.dtheta.as_slice());
+        self.values(i.dvel.as_slice());
+        if let Some(g) = &s.gnss {
+            let f = &g.value;
+            self.values(&[f.time, f.pos.lat, f.pos.lon, f.pos.h]);
+            if let Some(v) = &f.vel {
+                self.values(v.as_slice());
+            }
+        }
+        if let Some(a) = &s.attitude {
+            self.values(&[a.time]);
+            self.values(a.att.coords.as_slice());
+        }
+        if let Some(o) = &s.odometer {
+            self.values(&[o.value.time, o.value.speed]);
+        }
+    }
+
+    pub(crate) fn value(&self) -> u64 {
+        self.0
+    }
+}

@@ -1,0 +1,169 @@
+//! Per-epoch output of a run: navigation errors and what the adapters did.
+
+use kestrel_adaptive::{
+    CompositionReport, CompressionReport, DivergenceReport, FuzzyGainReport, HuberReport,
+    StrongTrackingReport, WindowedNoiseReport,
+};
+use kestrel_core::UpdateReport;
+use nalgebra::Vector3;
+
+use crate::odometer::ThresholdReport;
+
+/// What the filter and its adapters did at one update. Neutral values
+/// (`1`, `0`, `false`) where a filter has no such adapter.
+///
+/// ```
+/// let a = kestrel_nav::experiment::Adaptation::default();
+/// assert_eq!((a.fade, a.inflation, a.compression, a.alpha1), (1.0, 1.0, 1.0, 1.0));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Adaptation {
+    /// NIS of the raw innovation against the nominal covariance.
+    pub nis: f64,
+    /// Whether the update was rejected (the prior kept).
+    pub rejected: bool,
+    /// The fading factor λ applied to the propagated covariance.
+    pub fade: f64,
+    /// The largest inflation of an `R` component (`1/αᵢ` of the Huber
+    /// weights).
+    pub inflation: f64,
+    /// How many `R` components were inflated.
+    pub inflated: usize,
+    /// The factor the innovation was compressed by (outlier compression).
+    pub compression: f64,
+    /// The fuzzy odometer gain α₁.
+    pub alpha1: f64,
+    /// The trace of the `R` the gain used.
+    pub noise_trace: f64,
+}
+
+impl Default for Adaptation {
+    fn default() -> Self {
+        Self {
+            nis: 0.0,
+            rejected: false,
+            fade: 1.0,
+            inflation: 1.0,
+            inflated: 0,
+            compression: 1.0,
+            alpha1: 1.0,
+            noise_trace: 0.0,
+        }
+    }
+}
+
+impl Adaptation {
+    /// From an update report and its adapters' reports.
+    pub(crate) fn from_report<const M: usize, R: Describe>(r: &UpdateReport<f64, M, R>) -> Self {
+        let mut a = Self {
+            nis: r.nis,
+            rejected: r.rejected,
+            fade: r.fade,
+            noise_trace: r.noise.trace(),
+            ..Self::default()
+        };
+        r.adapters.describe(&mut a);
+        a
+    }
+}
+
+/// One aiding epoch of a run: the errors of the navigation solution after
+/// the update against the truth at the same instant, and the update.
+///
+/// ```
+/// use kestrel_nav::experiment::{Adaptation, EpochRecord};
+/// use kestrel_nav::nalgebra::Vector3;
+/// let r = EpochRecord { time: 1.0, position: Vector3::new(3.0, 4.0, 0.0),
+///     velocity: Vector3::zeros(), attitude: Vector3::zeros(), adaptation: Adaptation::default() };
+/// assert_eq!(r.horizontal_error(), 5.0);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EpochRecord {
+    /// Time, s.
+    pub time: f64,
+    /// Position error δr (computed − true), NED, m.
+    pub position: Vector3<f64>,
+    /// Velocity error δv (computed − true), NED, m/s.
+    pub velocity: Vector3<f64>,
+    /// Attitude error φ, NED, rad (`C(computed) = (I − [φ×]) C(true)`).
+    pub attitude: Vector3<f64>,
+    /// What the update did.
+    pub adaptation: Adaptation,
+}
+
+impl EpochRecord {
+    /// The horizontal position error, m.
+    ///
+    /// ```
+    /// # use kestrel_nav::experiment::{Adaptation, EpochRecord};
+    /// # use kestrel_nav::nalgebra::Vector3;
+    /// let r = EpochRecord { time: 0.0, position: Vector3::new(0.0, 0.0, 7.0),
+    ///     velocity: Vector3::zeros(), attitude: Vector3::zeros(), adaptation: Adaptation::default() };
+    /// assert_eq!(r.horizontal_error(), 0.0);
+    /// ```
+    pub fn horizontal_error(&self) -> f64 {
+        self.position.xy().norm()
+    }
+}
+
+/// Adapter reports that say what they did.
+pub(crate) trait Describe {
+    /// Writes what this report knows into `a`.
+    fn describe(&self, a: &mut Adaptation);
+}
+
+impl Describe for () {
+    fn describe(&self, _: &mut Adaptation) {}
+}
+
+impl<A: Describe, B: Describe> Describe for (A, B) {
+    fn describe(&self, a: &mut Adaptation) {
+        self.0.describe(a);
+        self.1.describe(a);
+    }
+}
+
+impl<R: Describe, T> Describe for CompositionReport<R, T> {
+    fn describe(&self, a: &mut Adaptation) {
+        self.tests.describe(a);
+    }
+}
+
+// The fade itself is in the update report.
+impl Describe for DivergenceReport<f64> {
+    fn describe(&self, _: &mut Adaptation) {}
+}
+
+impl Describe for StrongTrackingReport<f64> {
+    fn describe(&self, _: &mut Adaptation) {}
+}
+
+impl Describe for CompressionReport<f64> {
+    fn describe(&self, a: &mut Adaptation) {
+        a.compression = self.factor;
+    }
+}
+
+impl<const M: usize> Describe for HuberReport<f64, M> {
+    fn describe(&self, a: &mut Adaptation) {
+        a.inflated = self.inflated;
+        let smallest = self.factors.min();
+        if smallest > 0.0 {
+            a.inflation = 1.0 / smallest;
+        }
+    }
+}
+
+impl Describe for ThresholdReport<f64> {
+    fn describe(&self, _: &mut Adaptation) {}
+}
+
+impl<const O: usize, const R: usize> Describe for FuzzyGainReport<f64, O, R> {
+    fn describe(&self, a: &mut Adaptation) {
+        a.alpha1 = self.alpha;
+    }
+}
+
+impl Describe for WindowedNoiseReport<f64> {
+    fn describe(&self, _: &mut Adaptation) {}
+}
