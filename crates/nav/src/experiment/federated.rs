@@ -20,7 +20,6 @@ use super::options::PositionAxes;
 use super::record::{Adaptation, EpochRecord};
 use super::run::Job;
 use super::summary::{Accumulator, RunSummary};
-use crate::correction::NavError;
 use crate::engine::{feed_back, ErrorSystem, Ins15, SensorCorrections};
 use crate::error_model::{ErrorModel15, ForcingMean};
 use crate::measurement::{ErrorMeasurement, GnssAntenna, InsContext};
@@ -136,25 +135,13 @@ where
         fed.locals_mut().0.set_state(x0).map_err(failed)?;
         fed.locals_mut().1.set_state(x0).map_err(failed)?;
 
-        let e = NavError::between(&earth, ins.state(), &sample.truth);
-        if !e.to_vector().iter().all(|v| v.is_finite()) {
-            return Err(RunError::NonFinite {
-                filter: label,
-                time,
-            });
-        }
-        let record = EpochRecord {
-            time,
-            position: e.dr,
-            velocity: e.dv,
-            attitude: e.phi,
-            adaptation: Adaptation {
-                nis: r0.nis + r1.nis,
-                rejected: r0.rejected && r1.rejected,
-                noise_trace: r0.noise.trace() + r1.noise.trace(),
-                ..Adaptation::default()
-            },
+        let adaptation = Adaptation {
+            nis: r0.nis + r1.nis,
+            rejected: r0.rejected && r1.rejected,
+            noise_trace: r0.noise.trace() + r1.noise.trace(),
+            ..Adaptation::default()
         };
+        let record = EpochRecord::measure(&earth, ins.state(), &sample.truth, adaptation, label)?;
         acc.add(&record);
         on_epoch(&record);
     }

@@ -7,7 +7,9 @@ use kestrel_adaptive::{
 use kestrel_core::UpdateReport;
 use nalgebra::Vector3;
 
+use super::RunError;
 use crate::odometer::ThresholdReport;
+use crate::{Ellipsoid, NavError, NavState};
 
 /// What the filter and its adapters did at one update. Neutral values
 /// (`1`, `0`, `false`) where a filter has no such adapter.
@@ -92,6 +94,29 @@ pub struct EpochRecord {
 }
 
 impl EpochRecord {
+    /// The errors of `nav` against `truth` at `time` with what the update
+    /// did; a non-finite error is reported as `NonFinite` naming `filter`.
+    pub(crate) fn measure(
+        earth: &Ellipsoid,
+        nav: &NavState,
+        truth: &NavState,
+        adaptation: Adaptation,
+        filter: &'static str,
+    ) -> Result<Self, RunError> {
+        let time = truth.time;
+        let e = NavError::between(earth, nav, truth);
+        if !e.to_vector().iter().all(|v| v.is_finite()) {
+            return Err(RunError::NonFinite { filter, time });
+        }
+        Ok(Self {
+            time,
+            position: e.dr,
+            velocity: e.dv,
+            attitude: e.phi,
+            adaptation,
+        })
+    }
+
     /// The horizontal position error, m.
     ///
     /// ```

@@ -11,7 +11,6 @@ use super::error::RunError;
 use super::options::{PositionAxes, RunOptions};
 use super::record::EpochRecord;
 use super::summary::{Accumulator, RunSummary};
-use crate::correction::NavError;
 use crate::engine::{ErrorSystem, LooselyCoupled};
 use crate::measurement::GnssAntenna;
 use crate::mechanisation::Strapdown;
@@ -167,20 +166,8 @@ impl<C: FnMut(&EpochRecord)> Job<'_, C> {
             let Some(adaptation) = aiding.update(&mut engine, &sample).map_err(fail)? else {
                 continue;
             };
-            let e = NavError::between(&earth, engine.solution(), &sample.truth);
-            if !e.to_vector().iter().all(|v| v.is_finite()) {
-                return Err(RunError::NonFinite {
-                    filter: label,
-                    time,
-                });
-            }
-            let record = EpochRecord {
-                time,
-                position: e.dr,
-                velocity: e.dv,
-                attitude: e.phi,
-                adaptation,
-            };
+            let record =
+                EpochRecord::measure(&earth, engine.solution(), &sample.truth, adaptation, label)?;
             acc.add(&record);
             (self.on_epoch)(&record);
         }
