@@ -1,0 +1,1 @@
+//! gins (being written).
