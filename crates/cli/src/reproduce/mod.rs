@@ -1,47 +1,230 @@
-//! `kestrel reproduce`, `kestrel run` and `kestrel scenarios` (being written).
+//! `kestrel reproduce`, `kestrel run` and `kestrel scenarios`: Monte Carlo
+//! runs of a scenario's filters, tables beside the papers' numbers, CSV and
+//! plots.
 
-use std::path::PathBuf;
+mod federated;
+mod metric;
+mod monte_carlo;
+mod paper;
+mod report;
+mod stats;
+mod table;
+mod window;
+
+use std::path::{Path, PathBuf};
 
 use clap::Args;
+use kestrel::nav::experiment::PositionAxes;
+use kestrel::nav::scenario::{builtin, by_name, Scenario};
 
+pub use federated::{federated_section, largest_difference};
+pub use metric::Metric;
+pub use monte_carlo::{run_monte_carlo, FilterOutcome, MonteCarloPlan, RunOutcome};
+pub use paper::{paper, Paper, PaperRow, PaperTable, PAPERS};
+pub use report::{text_report, write_summary_csv, ReportInput};
+pub use stats::MeanStd;
+pub use table::TextTable;
+pub use window::{Window, WindowError, WindowProbe};
+
+use crate::output::write_epochs_csv;
+use crate::plot::{error_figures, FilterTrace};
 use crate::CliError;
 
+/// Options shared by `reproduce` and `run`.
+#[derive(Debug, Clone, Args)]
+pub struct MonteCarloArgs {
+    /// Monte Carlo runs per filter; run i draws its sensor noise from seed + i.
+    #[arg(long, default_value_t = 20, value_name = "N")]
+    pub runs: usize,
+    /// Seed of run 0 [default: the scenario's own seed].
+    #[arg(long, value_name = "S")]
+    pub seed: Option<u64>,
+    /// Output directory; each scenario writes into DIR/<scenario name>/.
+    #[arg(long, default_value = "kestrel-out", value_name = "DIR")]
+    pub out: PathBuf,
+    /// Worker threads, 0 for one per core. The results do not depend on it.
+    #[arg(long, default_value_t = 0, value_name = "K")]
+    pub threads: usize,
+    /// Simulate only the first SECONDS of each scenario [default: all of it].
+    #[arg(long, value_name = "SECONDS")]
+    pub duration: Option<f64>,
+    /// Skip the PNG/SVG figures (tables and CSV only).
+    #[arg(long)]
+    pub no_plots: bool,
+}
+
 /// Arguments of `kestrel reproduce`.
-#[derive(Debug, Args)]
+#[derive(Debug, Clone, Args)]
 pub struct ReproduceArgs {
-    /// Which paper: 000, 001, 002, 003, 004 or all.
+    /// Which paper's experiment: 000, 001, 002, 003, 004, or all.
+    #[arg(value_parser = ["000", "001", "002", "003", "004", "all"])]
     pub which: String,
+    #[command(flatten)]
+    pub monte_carlo: MonteCarloArgs,
 }
 
 /// Arguments of `kestrel run`.
-#[derive(Debug, Args)]
+#[derive(Debug, Clone, Args)]
 pub struct RunArgs {
-    /// The scenario file (TOML).
+    /// The scenario file (TOML; see the examples in scenarios/).
     pub scenario: PathBuf,
+    #[command(flatten)]
+    pub monte_carlo: MonteCarloArgs,
 }
 
 /// Runs `kestrel reproduce`.
 ///
 /// # Errors
-/// [`CliError`] with a one-line cause.
+/// [`CliError`] with a one-line cause: bad options, or an output file that
+/// cannot be written. A filter that diverges is reported in the tables, not
+/// as an error.
 pub fn reproduce(args: &ReproduceArgs) -> Result<(), CliError> {
-    let _ = args;
-    Err(CliError::Failed("not available yet".into()))
+    let scenarios: Vec<Scenario> = if args.which == "all" {
+        builtin().into()
+    } else {
+        let s = by_name(&args.which)
+            .ok_or_else(|| CliError::Failed(format!("no built-in scenario `{}`", args.which)))?;
+        vec![s]
+    };
+    for s in &scenarios {
+        execute(s, paper(&s.name), &args.monte_carlo)?;
+    }
+    Ok(())
 }
 
 /// Runs `kestrel run`.
 ///
 /// # Errors
-/// [`CliError`] with a one-line cause.
+/// As [`reproduce`], and [`CliError::Input`] for a bad scenario file.
 pub fn run_file(args: &RunArgs) -> Result<(), CliError> {
-    let _ = args;
-    Err(CliError::Failed("not available yet".into()))
+    let scenario = crate::scenario_file::load(&args.scenario)?;
+    execute(&scenario, None, &args.monte_carlo)
 }
 
-/// Runs `kestrel scenarios`.
+/// Runs `kestrel scenarios`: prints each built-in scenario with a one-line
+/// description.
 ///
 /// # Errors
 /// Never.
 pub fn list_scenarios() -> Result<(), CliError> {
+    for s in builtin() {
+        println!("{}  {}", s.name, s.description);
+    }
     Ok(())
+}
+
+/// Runs one scenario, prints its report and writes its files.
+fn execute(
+    scenario: &Scenario,
+    paper: Option<&Paper>,
+    args: &MonteCarloArgs,
+) -> Result<(), CliError> {
+    if let Some(d) = args.duration {
+        if !(d.is_finite() && d > 0.0) {
+            return Err(CliError::Failed(format!(
+                "--duration must be a positive number of seconds, got {d}"
+            )));
+        }
+    }
+    let plan = MonteCarloPlan {
+        runs: args.runs,
+        seed: args.seed.unwrap_or(scenario.seed),
+        threads: args.threads,
+        duration: args.duration,
+        progress: true,
+    };
+    let windows: Vec<Window> = paper
+        .map(|p| p.windows.iter().map(|(_, w)| *w).collect())
+        .unwrap_or_default();
+    let outcomes = run_monte_carlo(scenario, &plan, &windows)?;
+    let input = ReportInput {
+        scenario,
+        plan: &plan,
+        outcomes: &outcomes,
+        paper,
+    };
+    let mut text = text_report(&input);
+    if scenario.name == "001" && paper.is_some() {
+        text.push_str(&federated_section(&outcomes));
+    }
+    if let Some(p) = paper {
+        for note in p.notes {
+            text.push_str(&format!("note: {note}\n"));
+        }
+    }
+    let dir = args.out.join(slug(&scenario.name));
+    std::fs::create_dir_all(&dir).map_err(|e| CliError::io(&dir, e))?;
+    let written = write_outputs(&dir, &input, !args.no_plots)?;
+    let report = dir.join("report.txt");
+    std::fs::write(&report, &text).map_err(|e| CliError::io(&report, e))?;
+    println!("{text}");
+    println!(
+        "wrote {} files to {} (report.txt, summary.csv, epochs_*.csv{})\n",
+        written + 1,
+        dir.display(),
+        if args.no_plots { "" } else { ", *.png, *.svg" }
+    );
+    for o in &outcomes {
+        let failed = o.failures().count();
+        if failed > 0 {
+            eprintln!(
+                "kestrel: warning: {} failed in {failed} of {} runs of scenario {} (see the report)",
+                o.label,
+                o.runs.len(),
+                scenario.name
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Writes summary.csv, one epochs CSV per filter (run 0) and the figures;
+/// returns the number of files written.
+fn write_outputs(dir: &Path, input: &ReportInput<'_>, plots: bool) -> Result<usize, CliError> {
+    let axes = PositionAxes::for_scenario(&input.scenario.name);
+    write_summary_csv(&dir.join("summary.csv"), input)?;
+    let mut files = 1;
+    for o in input.outcomes {
+        write_epochs_csv(
+            &dir.join(format!("epochs_{}.csv", slug(o.label))),
+            axes,
+            &o.records,
+        )?;
+        files += 1;
+    }
+    if plots {
+        let traces: Vec<FilterTrace<'_>> = input
+            .outcomes
+            .iter()
+            .map(|o| FilterTrace {
+                label: o.label,
+                records: &o.records,
+            })
+            .collect();
+        let title = format!(
+            "scenario {}: {}",
+            input.scenario.name, input.scenario.description
+        );
+        files += error_figures(dir, &title, axes, &traces)?.len();
+    }
+    Ok(files)
+}
+
+/// A file-name-safe form of a label: lower case, runs of other characters
+/// replaced by one `-`.
+///
+/// ```
+/// assert_eq!(kestrel_cli::reproduce::slug("Sage-Husa+fading"), "sage-husa-fading");
+/// assert_eq!(kestrel_cli::reproduce::slug("federated SR-UKF"), "federated-sr-ukf");
+/// ```
+pub fn slug(label: &str) -> String {
+    let mut s = String::new();
+    for c in label.chars() {
+        if c.is_ascii_alphanumeric() {
+            s.push(c.to_ascii_lowercase());
+        } else if !s.ends_with('-') && !s.is_empty() {
+            s.push('-');
+        }
+    }
+    s.trim_end_matches('-').to_string()
 }

@@ -1,0 +1,236 @@
+//! The printed report of a Monte Carlo and its summary CSV.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use kestrel::nav::experiment::PositionAxes;
+use kestrel::nav::scenario::Scenario;
+
+use super::metric::Metric;
+use super::monte_carlo::{FilterOutcome, MonteCarloPlan};
+use super::paper::{Paper, PaperTable};
+use super::stats::MeanStd;
+use super::table::TextTable;
+use crate::CliError;
+
+/// Everything a report is made from.
+#[derive(Clone, Copy, Debug)]
+pub struct ReportInput<'a> {
+    /// The scenario that was run.
+    pub scenario: &'a Scenario,
+    /// How it was run.
+    pub plan: &'a MonteCarloPlan,
+    /// The outcome per filter, in the scenario's order (baseline first).
+    pub outcomes: &'a [FilterOutcome],
+    /// The paper, for built-in scenarios run by `reproduce`.
+    pub paper: Option<&'a Paper>,
+}
+
+impl ReportInput<'_> {
+    fn axes(&self) -> PositionAxes {
+        PositionAxes::for_scenario(&self.scenario.name)
+    }
+
+    fn stats(&self, outcome: &FilterOutcome, metric: Metric) -> MeanStd {
+        MeanStd::of(outcome.completed().map(|s| metric.value(s)))
+    }
+}
+
+/// The text report: RMS tables (mean ± std over the runs), the paper's
+/// table beside kestrel's with improvement ratios, failures, window errors.
+pub fn text_report(input: &ReportInput<'_>) -> String {
+    let mut out = String::new();
+    let s = input.scenario;
+    let plan = input.plan;
+    let _ = writeln!(out, "== Scenario {}: {}", s.name, s.description);
+    let _ = writeln!(
+        out,
+        "   {} run(s) per filter, seeds {}–{}; RMS over each run's aiding epochs, mean ± std over runs\n",
+        plan.runs,
+        plan.seed,
+        plan.seed.wrapping_add(plan.runs as u64 - 1),
+    );
+    let axes = input.axes();
+    let groups: [(&str, &[Metric]); 2] = [
+        (
+            "position error, m",
+            &[
+                Metric::Position(0),
+                Metric::Position(1),
+                Metric::Position(2),
+                Metric::Horizontal,
+                Metric::MaxPosition,
+            ],
+        ),
+        (
+            "velocity error, m/s and attitude error, deg",
+            &[
+                Metric::Velocity(0),
+                Metric::Velocity(1),
+                Metric::Velocity(2),
+                Metric::Attitude(0),
+                Metric::Attitude(1),
+                Metric::Attitude(2),
+            ],
+        ),
+    ];
+    for (title, metrics) in groups {
+        let mut header = vec![format!("{title}")];
+        header.extend(metrics.iter().map(|m| m.heading(axes)));
+        let mut t = TextTable::new(header);
+        for o in input.outcomes {
+            let mut row = vec![o.label.to_string()];
+            row.extend(metrics.iter().map(|m| format!("{:.3}", input.stats(o, *m))));
+            t.row(row);
+        }
+        let _ = writeln!(out, "{t}");
+    }
+    if let Some(table) = input.paper.and_then(|p| p.table.as_ref()) {
+        paper_comparison(&mut out, input, table);
+    }
+    if let Some(paper) = input.paper {
+        window_table(&mut out, input, paper);
+    }
+    failures(&mut out, input.outcomes, plan);
+    out
+}
+
+fn paper_comparison(out: &mut String, input: &ReportInput<'_>, table: &PaperTable) {
+    let _ = writeln!(out, "kestrel mean (paper) — {}", table.source);
+    let mut header = vec!["filter".to_string()];
+    header.extend(table.columns.iter().map(|(_, h)| h.to_string()));
+    let mut t = TextTable::new(header.clone());
+    let find = |label: &str| input.outcomes.iter().find(|o| o.label == label);
+    for row in table.rows {
+        let mut cells = vec![row.label.to_string()];
+        for ((metric, _), paper) in table.columns.iter().zip(row.values) {
+            let ours = find(row.label).map(|o| input.stats(o, *metric).mean);
+            cells.push(match ours {
+                Some(v) => format!("{v:.3} ({paper})"),
+                None => format!("— ({paper})"),
+            });
+        }
+        t.row(cells);
+    }
+    let _ = writeln!(out, "{t}");
+    let Some(base) = table.rows.first() else {
+        return;
+    };
+    let _ = writeln!(
+        out,
+        "improvement over {} (its RMS ÷ the filter's): kestrel ×, paper ×",
+        base.label
+    );
+    let mut t = TextTable::new(header);
+    for row in &table.rows[1..] {
+        let mut cells = vec![row.label.to_string()];
+        for (i, (metric, _)) in table.columns.iter().enumerate() {
+            let ours = match (find(base.label), find(row.label)) {
+                (Some(b), Some(f)) => input.stats(b, *metric).mean / input.stats(f, *metric).mean,
+                _ => f64::NAN,
+            };
+            let paper = base.values[i] / row.values[i];
+            cells.push(format!("{ours:.2}× ({paper:.2}×)"));
+        }
+        t.row(cells);
+    }
+    let _ = writeln!(out, "{t}");
+}
+
+fn window_table(out: &mut String, input: &ReportInput<'_>, paper: &Paper) {
+    if paper.windows.is_empty() {
+        return;
+    }
+    let mut header = vec!["horizontal error in window, m".to_string()];
+    for (name, w) in paper.windows {
+        header.push(format!("{name} [{}, {}] s: max", w.start, w.end));
+        header.push("added".to_string());
+    }
+    let mut t = TextTable::new(header);
+    for o in input.outcomes {
+        let mut row = vec![o.label.to_string()];
+        for i in 0..paper.windows.len() {
+            row.push(format!("{:.2}", MeanStd::of(o.window(i).map(|e| e.max))));
+            row.push(format!("{:.2}", MeanStd::of(o.window(i).map(|e| e.growth))));
+        }
+        t.row(row);
+    }
+    let _ = writeln!(out, "{t}");
+    let _ = writeln!(
+        out,
+        "   max: largest horizontal error in the window; added: largest change of the horizontal error since the window began\n"
+    );
+}
+
+fn failures(out: &mut String, outcomes: &[FilterOutcome], plan: &MonteCarloPlan) {
+    for o in outcomes {
+        let failed: Vec<_> = o.failures().collect();
+        if failed.is_empty() {
+            continue;
+        }
+        let _ = writeln!(
+            out,
+            "{} failed in {} of {} runs (left out of its statistics):",
+            o.label,
+            failed.len(),
+            o.runs.len()
+        );
+        for (run, error) in failed.iter().take(5) {
+            let seed = plan.seed.wrapping_add(*run as u64);
+            let _ = writeln!(out, "   run {run} (seed {seed}): {error}");
+        }
+        if failed.len() > 5 {
+            let _ = writeln!(out, "   … and {} more", failed.len() - 5);
+        }
+    }
+}
+
+/// Writes the summary CSV: one row per filter and metric.
+///
+/// Columns: `scenario, filter, metric, mean, std, runs_ok, runs_failed,
+/// paper` (`paper` empty where the paper gives no value).
+///
+/// # Errors
+/// [`CliError::Io`] if the file cannot be written.
+pub fn write_summary_csv(path: &Path, input: &ReportInput<'_>) -> Result<(), CliError> {
+    let io = |e: csv::Error| CliError::Failed(format!("{}: {e}", path.display()));
+    let mut w = csv::Writer::from_path(path).map_err(io)?;
+    w.write_record([
+        "scenario",
+        "filter",
+        "metric",
+        "mean",
+        "std",
+        "runs_ok",
+        "runs_failed",
+        "paper",
+    ])
+    .map_err(io)?;
+    let axes = input.axes();
+    let table = input.paper.and_then(|p| p.table.as_ref());
+    for o in input.outcomes {
+        for metric in Metric::ALL {
+            let stats = input.stats(o, metric);
+            let paper = table
+                .and_then(|t| {
+                    let row = t.rows.iter().find(|r| r.label == o.label)?;
+                    let col = t.columns.iter().position(|(m, _)| *m == metric)?;
+                    row.values.get(col).copied()
+                })
+                .map(|v| v.to_string())
+                .unwrap_or_default();
+            w.write_record([
+                input.scenario.name.clone(),
+                o.label.to_string(),
+                metric.name(axes),
+                stats.mean.to_string(),
+                stats.std.to_string(),
+                stats.count.to_string(),
+                (o.runs.len() - stats.count).to_string(),
+                paper,
+            ])
+            .map_err(io)?;
+        }
+    }
+    w.flush().map_err(|e| CliError::io(path, e))
+}

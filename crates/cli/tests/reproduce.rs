@@ -1,0 +1,158 @@
+//! `kestrel reproduce` / `run` / `scenarios`: the Monte Carlo machinery, the
+//! paper-003 accuracy claim, and the binary end to end.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+use kestrel::nav::scenario::by_name;
+use kestrel_cli::reproduce::{paper, run_monte_carlo, MonteCarloPlan, Window};
+
+fn plan(runs: usize, threads: usize, duration: f64) -> MonteCarloPlan {
+    MonteCarloPlan {
+        runs,
+        seed: 7,
+        threads,
+        duration: Some(duration),
+        progress: false,
+    }
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("kestrel-reproduce-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+#[test]
+fn results_do_not_depend_on_the_thread_count() {
+    let s = by_name("002").unwrap();
+    let w = [Window {
+        start: 5.0,
+        end: 15.0,
+    }];
+    let one = run_monte_carlo(&s, &plan(3, 1, 20.0), &w).unwrap();
+    let two = run_monte_carlo(&s, &plan(3, 2, 20.0), &w).unwrap();
+    assert_eq!(one.len(), s.filters.len());
+    for (a, b) in one.iter().zip(&two) {
+        assert_eq!(a.label, b.label);
+        assert_eq!(a.runs, b.runs);
+        assert_eq!(a.records, b.records);
+        assert_eq!(a.runs.len(), 3);
+        assert_eq!(a.records.len(), 20, "run 0 keeps its 1 Hz records");
+    }
+    // Different runs see different noise.
+    let s0 = one[0].runs[0].as_ref().unwrap().0;
+    let s1 = one[0].runs[1].as_ref().unwrap().0;
+    assert_ne!(s0.data_digest, s1.data_digest);
+}
+
+/// Paper 003: the fuzzy filter removes the jump of the 600 s wheel spin and
+/// the growth during the 2000–2100 s slippery climb: its largest error in
+/// those windows is at most a third of the unprocessed filter's and no worse
+/// than the max-threshold baseline's.
+#[test]
+fn paper_003_fuzzy_filter_suppresses_the_odometer_faults() {
+    let s = by_name("003").unwrap();
+    let p = paper("003").unwrap();
+    let windows: Vec<Window> = p.windows.iter().map(|(_, w)| *w).collect();
+    let out = run_monte_carlo(&s, &plan(2, 0, 2110.0), &windows).unwrap();
+    let find = |label: &str| out.iter().find(|o| o.label == label).unwrap();
+    let (plain, threshold, fuzzy) = (find("KF"), find("max threshold"), find("fuzzy adaptive"));
+    for o in [plain, threshold, fuzzy] {
+        assert_eq!(o.failures().count(), 0, "{} failed", o.label);
+    }
+    for (w, (name, _)) in p.windows.iter().enumerate() {
+        let mean = |o: &kestrel_cli::reproduce::FilterOutcome| {
+            let v: Vec<f64> = o.window(w).map(|e| e.max).collect();
+            v.iter().sum::<f64>() / v.len() as f64
+        };
+        let (u, t, f) = (mean(plain), mean(threshold), mean(fuzzy));
+        eprintln!("{name}: unprocessed {u:.2} m, max threshold {t:.2} m, fuzzy {f:.2} m");
+        assert!(f <= u / 3.0, "{name}: fuzzy {f} vs unprocessed {u}");
+        assert!(f <= t, "{name}: fuzzy {f} vs max threshold {t}");
+    }
+}
+
+fn kestrel(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_kestrel"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+#[test]
+fn scenarios_lists_the_five_papers() {
+    let out = kestrel(&["scenarios"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let names: Vec<&str> = text.lines().map(|l| &l[..3]).collect();
+    assert_eq!(names, ["000", "001", "002", "003", "004"]);
+    assert!(text.lines().all(|l| l.len() > 20), "each has a description");
+}
+
+#[test]
+fn reproduce_writes_tables_csv_and_figures() {
+    let dir = temp_dir("002");
+    let out = kestrel(&[
+        "reproduce",
+        "002",
+        "--runs",
+        "2",
+        "--duration",
+        "30",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(stdout.contains("== Scenario 002"));
+    assert!(stdout.contains("paper 002, Table 1"), "{stdout}");
+    assert!(
+        stdout.contains("(2.245)"),
+        "the paper's EKF east position RMS"
+    );
+    let d = dir.join("002");
+    for f in [
+        "report.txt",
+        "summary.csv",
+        "epochs_kf.csv",
+        "epochs_ict-erekf.csv",
+    ] {
+        assert!(d.join(f).is_file(), "{f}");
+    }
+    let summary = std::fs::read_to_string(d.join("summary.csv")).unwrap();
+    let mut lines = summary.lines();
+    assert_eq!(
+        lines.next(),
+        Some("scenario,filter,metric,mean,std,runs_ok,runs_failed,paper")
+    );
+    assert_eq!(lines.clone().count(), 2 * 11);
+    assert!(summary.contains("002,KF,pos_east_m,"));
+    assert!(summary.contains(",2,0,2.245"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn bad_arguments_fail_with_one_line() {
+    for args in [
+        &["reproduce", "007"][..],
+        &["reproduce", "000", "--runs", "0", "--no-plots"],
+        &["reproduce", "000", "--duration", "-1"],
+        &["reproduce", "000", "--runs", "many"],
+    ] {
+        let out = kestrel(args);
+        assert!(!out.status.success(), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!err.trim().is_empty(), "{args:?}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+    let out = kestrel(&["reproduce", "000", "--runs", "0", "--no-plots"]);
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr).trim(),
+        "kestrel: --runs must be at least 1"
+    );
+}
