@@ -41,11 +41,11 @@ fn print(name: &str, m: &RunSummary) {
 }
 
 /// Aiding epochs in the first 100 s: 1 Hz GNSS (with the attitude
-/// reference for 004) from 1 s to 100 s, the 10 Hz odometer of 003 from
-/// 0.1 s to 100 s.
+/// reference for 004) from 1 s to 100 s, the 10 Hz GNSS of 000 and the
+/// 10 Hz odometer of 003 from 0.1 s to 100 s.
 fn expected_epochs(name: &str) -> usize {
     match name {
-        "003" => 1000,
+        "000" | "003" => 1000,
         _ => 100,
     }
 }
@@ -151,13 +151,15 @@ fn streaming_gives_the_stored_records() {
 fn a_failing_filter_is_an_error_with_its_name_and_time() {
     for name in ["000", "001"] {
         let mut s: Scenario = by_name(name).unwrap();
-        // A NaN measurement variance: the first GNSS update (1 s) must fail.
+        // A NaN measurement variance: the first GNSS update (at 1/rate s:
+        // 0.1 s for 000, 1 s for 001) must fail.
+        let first = 1.0 / s.gnss.as_ref().unwrap().rate;
         s.filter.r = MeasurementNoise::gnss(Vector3::repeat(f64::NAN), Vector3::repeat(0.3));
         for kind in &s.filters {
             match run(&s, kind, 0, &short(5.0)) {
                 Err(RunError::Filter { filter, time, .. }) => {
                     assert_eq!(filter, kind.label());
-                    assert!((time - 1.0).abs() < 1e-9, "{filter} failed at {time} s");
+                    assert!((time - first).abs() < 1e-9, "{filter} failed at {time} s");
                 }
                 other => panic!("{}: {other:?}", kind.label()),
             }
@@ -226,7 +228,7 @@ fn records_show_what_the_adapters_did() {
     print("002", &ekf.summary);
     print("002", &robust.summary);
 
-    // 000: the fading filters report λ > 1 at some epochs (with γ = 3 the
+    // 000: the fading filters report λ > 1 at some epochs (with γ = 4 the
     // first fades fall in the 1.5 m/s velocity-noise window, 50–100 s).
     let s0 = by_name("000").unwrap();
     let faded = run(&s0, &s0.filters[1], s0.seed, &short(100.0)).unwrap();

@@ -183,6 +183,12 @@ impl<T: Real, const M: usize> GainStep<T, M> {
     /// only approximate `C` by fading all of `H P⁻ Hᵀ`. The covariance and
     /// unscented forms still fade only the propagated part; the square-root
     /// form, whose factor then already holds `Q`, fades all of `P⁻`.
+    ///
+    /// When the form fades only a block of states
+    /// ([`FadeStates`](crate::form::FadeStates)), this view takes
+    /// `H D Φ P Φᵀ D Hᵀ = λ H Φ P Φᵀ Hᵀ`, exact when the block covers every
+    /// state `H` reads; otherwise `C` here (and a `λ` computed from it) is an
+    /// approximation, while the form still applies `D` exactly.
     pub fn fade(&mut self, lambda: T) {
         if !(lambda.is_finite() && lambda > T::zero()) || lambda == T::one() {
             return;

@@ -2,7 +2,7 @@ use nalgebra::{SMatrix, SVector};
 
 use super::outcome::{adapt_checked, joseph_gain};
 use super::pending::PendingCovariance;
-use super::{sequential, Form, PredictForm, UpdateForm};
+use super::{sequential, FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::error::ensure_finite;
 use crate::linalg::{mirror_lower, sandwich, sandwich_transposed};
@@ -12,7 +12,8 @@ use crate::{
 
 /// The covariance form (Kalman filter, extended Kalman filter): stores `P`,
 /// predicts `P⁻ = λ Φ P Φᵀ + Q` and updates with the Joseph form, expanded
-/// to `O(N²M)` products (see [`joseph_expanded`](crate::linalg::joseph_expanded)). Requires
+/// to `O(N²M)` products with `K R Kᵀ` through a factor of `R` (see
+/// [`joseph_factored_noise`](crate::linalg::joseph_factored_noise)). Requires
 /// [`LinearizedProcess`] and [`LinearizedMeasurement`] models.
 ///
 /// When the filter has no adapter and `R` is diagonal, the update processes
@@ -52,6 +53,26 @@ impl<T: Real, const N: usize> CovarianceForm<T, N> {
     /// Whether sequential scalar updates are enabled.
     pub fn sequential(&self) -> bool {
         self.sequential
+    }
+
+    /// Selects the states an adapter's fade scales (default: all, the
+    /// scalar fade): `P⁻ = D Φ P Φᵀ D + Q`, `D = diag(√λ on the selected
+    /// states, 1 elsewhere)`; exact in this form. See [`FadeStates`].
+    ///
+    /// ```
+    /// use kestrel_core::form::{CovarianceForm, FadeStates};
+    /// use kestrel_core::nalgebra::Matrix2;
+    /// let mut form = CovarianceForm::new(&Matrix2::<f64>::identity()).unwrap();
+    /// form.set_fade_states(FadeStates::range(1..2));
+    /// assert!(form.fade_states().contains(1) && !form.fade_states().contains(0));
+    /// ```
+    pub fn set_fade_states(&mut self, states: FadeStates<N>) {
+        self.cov.set_fade_states(states);
+    }
+
+    /// The states a fade scales.
+    pub fn fade_states(&self) -> FadeStates<N> {
+        self.cov.fade_states()
     }
 }
 
@@ -169,7 +190,7 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         };
         let (r_used, nu_used) = done.used()?;
         let c = hph + r_used;
-        let gain = joseph_gain(&prior, &hp, &c, done.factor_if_unfaded())?;
+        let gain = joseph_gain(&prior, &hp, &hph, &r_used, &c, done.factor_if_unfaded())?;
         let x_new = space.add(x, &(gain.k * nu_used));
         ensure_finite(x_new.as_slice(), Quantity::UpdatedEstimate)?;
 

@@ -4,6 +4,7 @@
 //! fade the propagated part before `Q` is added.
 
 mod covariance;
+mod fade_states;
 mod outcome;
 mod pending;
 mod sequential;
@@ -11,6 +12,7 @@ mod square_root;
 mod unscented;
 
 pub use covariance::CovarianceForm;
+pub use fade_states::FadeStates;
 pub use square_root::{SquareRootForm, TimeUpdate};
 pub use unscented::UnscentedForm;
 

@@ -5,7 +5,10 @@ use nalgebra::{SMatrix, SVector};
 
 use crate::adapter::{GainStep, NoiseAdapter};
 use crate::error::ensure_finite;
-use crate::linalg::{cholesky, joseph_expanded, solve_lower, solve_lower_transpose};
+use crate::linalg::{
+    cholesky, cholesky_semidefinite, joseph_expanded, joseph_factored_noise, solve_lower,
+    solve_lower_transpose,
+};
 use crate::{FilterError, Quantity, Real, UpdateReport};
 
 /// The gain and covariance of a Kalman update.
@@ -20,12 +23,21 @@ pub(crate) struct Gain<T: Real, const N: usize, const M: usize> {
 
 /// The gain `K = B C⁻¹` (two triangular solves on `Bᵀ`) and the expanded
 /// Joseph update of `prior`, for the cross covariance `B = P⁻ Hᵀ` (or `P_xz`),
-/// given transposed, and the innovation covariance `c`. `known` is the lower
-/// Cholesky factor of `c` if the caller already has it (the adapters' view
-/// factors the same matrix when nothing faded it).
+/// given transposed, the predicted measurement covariance `predicted`
+/// (`H P⁻ Hᵀ` or `P_zz`), the noise `noise` and `c = predicted + noise`.
+/// `known` is the lower Cholesky factor of `c` if the caller already has it
+/// (the adapters' view factors the same matrix when nothing faded it).
+///
+/// `R` enters the covariance through its factor
+/// ([`joseph_factored_noise`]): through `C`, the rounding of `K C Kᵀ` can
+/// make the posterior indefinite when `C` is badly conditioned (an
+/// estimated `R` in `f32`). An `R` without a semi-definite factor is not a
+/// covariance; it keeps [`joseph_expanded`] with `C`.
 pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
     prior: &SMatrix<T, N, N>,
     cross_t: &SMatrix<T, M, N>,
+    predicted: &SMatrix<T, M, M>,
+    noise: &SMatrix<T, M, M>,
     c: &SMatrix<T, M, M>,
     known: Option<&SMatrix<T, M, M>>,
 ) -> Result<Gain<T, N, M>, FilterError> {
@@ -37,7 +49,11 @@ pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
     solve_lower(&factor, &mut kt);
     solve_lower_transpose(&factor, &mut kt);
     let k = kt.transpose();
-    let covariance = joseph_expanded(prior, &k, &cross_t.transpose(), c);
+    let b = cross_t.transpose();
+    let covariance = match cholesky_semidefinite(noise) {
+        Ok(l) => joseph_factored_noise(prior, &k, &b, predicted, &l),
+        Err(_) => joseph_expanded(prior, &k, &b, c),
+    };
     ensure_finite(covariance.as_slice(), Quantity::UpdatedEstimate)?;
     Ok(Gain {
         k,

@@ -2,6 +2,7 @@
 
 use nalgebra::SMatrix;
 
+use super::FadeStates;
 use crate::linalg::{sandwich, sandwich_transposed};
 use crate::Real;
 
@@ -18,6 +19,8 @@ pub(crate) struct PendingCovariance<T: Real, const N: usize> {
     /// The pending fade of `p` from the after-predict hook.
     fade: T,
     pending: bool,
+    /// The states a fade scales.
+    states: FadeStates<N>,
 }
 
 impl<T: Real, const N: usize> PendingCovariance<T, N> {
@@ -28,17 +31,29 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
             q: SMatrix::zeros(),
             fade: T::one(),
             pending: false,
+            states: FadeStates::all(),
         }
     }
 
-    /// `λ_total Φ P Φᵀ + Q` for an extra fade `extra` on top of the pending one.
+    /// The states a fade scales.
+    pub fn fade_states(&self) -> FadeStates<N> {
+        self.states
+    }
+
+    /// Selects the states a fade scales.
+    pub fn set_fade_states(&mut self, states: FadeStates<N>) {
+        self.states = states;
+    }
+
+    /// `D Φ P Φᵀ D + Q` (`λ_total Φ P Φᵀ + Q` when every state fades) for
+    /// an extra fade `extra` on top of the pending one.
     pub fn prior(&self, extra: T) -> SMatrix<T, N, N> {
         if self.pending {
-            self.p * (self.fade * extra) + self.q
+            self.states.scale_symmetric(&self.p, self.fade * extra) + self.q
         } else if extra == T::one() {
             self.p
         } else {
-            self.p * extra
+            self.states.scale_symmetric(&self.p, extra)
         }
     }
 
@@ -77,7 +92,13 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
         predicted: &SMatrix<T, M, M>,
     ) -> (SMatrix<T, M, M>, SMatrix<T, M, M>) {
         match h {
-            Some(h) if self.pending => (sandwich(h, &self.p) * self.fade, sandwich(h, &self.q)),
+            Some(h) if self.pending && self.states.is_all() => {
+                (sandwich(h, &self.p) * self.fade, sandwich(h, &self.q))
+            }
+            Some(h) if self.pending => (
+                sandwich(h, &self.states.scale_symmetric(&self.p, self.fade)),
+                sandwich(h, &self.q),
+            ),
             _ => (*predicted, SMatrix::zeros()),
         }
     }
@@ -98,10 +119,15 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
         if !self.pending {
             return (h * self.p, None);
         }
-        let hp_propagated = h * self.p;
         let hq = h * self.q;
-        let hp = hp_propagated * self.fade + hq;
-        let propagated = sandwich_transposed(&hp_propagated, h) * self.fade;
+        let (hp, propagated) = if self.states.is_all() {
+            let hp_propagated = h * self.p;
+            let hp = hp_propagated * self.fade + hq;
+            (hp, sandwich_transposed(&hp_propagated, h) * self.fade)
+        } else {
+            let hp_propagated = h * self.states.scale_symmetric(&self.p, self.fade);
+            (hp_propagated + hq, sandwich_transposed(&hp_propagated, h))
+        };
         (hp, Some((propagated, sandwich_transposed(&hq, h))))
     }
 }
@@ -112,6 +138,7 @@ impl<T: Real, const N: usize> PartialEq for PendingCovariance<T, N> {
     fn eq(&self, other: &Self) -> bool {
         self.p == other.p
             && self.pending == other.pending
+            && self.states == other.states
             && (!self.pending || (self.q == other.q && self.fade == other.fade))
     }
 }

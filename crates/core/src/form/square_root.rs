@@ -2,7 +2,7 @@ use nalgebra::{SMatrix, SVector};
 
 use super::outcome::{adapt, not_pd};
 use super::unscented::effective_jacobian;
-use super::{Form, PredictForm, UpdateForm};
+use super::{FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::error::ensure_finite;
 use crate::linalg::{
@@ -63,6 +63,8 @@ pub struct SquareRootForm<T: Real, const N: usize> {
     params: MerweParams<T>,
     weights: SigmaWeights<T>,
     time_update: TimeUpdate,
+    /// The states a fade scales.
+    states: FadeStates<N>,
 }
 
 impl<T: Real, const N: usize> SquareRootForm<T, N> {
@@ -82,6 +84,7 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
             params,
             weights,
             time_update: TimeUpdate::default(),
+            states: FadeStates::all(),
         };
         form.set_covariance(p0)?;
         Ok(form)
@@ -116,22 +119,44 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
         &self.params
     }
 
+    /// Selects the states an adapter's fade scales (default: all, the
+    /// scalar fade): the rows of the selected states of the propagated
+    /// factor are scaled by `√λ` (`D S` stays lower-triangular and
+    /// `D S Sᵀ D` is the covariance form's `D Φ P Φᵀ D`). See [`FadeStates`].
+    ///
+    /// ```
+    /// use kestrel_core::form::{FadeStates, SquareRootForm};
+    /// use kestrel_core::nalgebra::Matrix2;
+    /// let mut form = SquareRootForm::new(&Matrix2::<f64>::identity()).unwrap();
+    /// form.set_fade_states(FadeStates::range(1..2));
+    /// assert!(!form.fade_states().is_all());
+    /// ```
+    pub fn set_fade_states(&mut self, states: FadeStates<N>) {
+        self.states = states;
+    }
+
+    /// The states a fade scales.
+    pub fn fade_states(&self) -> FadeStates<N> {
+        self.states
+    }
+
     /// The lower Cholesky factor `S` of the covariance (with any pending
     /// process noise merged in).
     pub fn factor(&self) -> SMatrix<T, N, N> {
         self.prior_factor(T::one())
     }
 
-    /// Factor of `λ_total S Sᵀ + S_Q S_Qᵀ` for an extra fade `extra`.
+    /// Factor of `D S Sᵀ D + S_Q S_Qᵀ` (`D = √λ_total` on the faded
+    /// states) for an extra fade `extra`.
     fn prior_factor(&self, extra: T) -> SMatrix<T, N, N> {
         if !self.pending {
             return if extra == T::one() {
                 self.s
             } else {
-                self.s * extra.sqrt()
+                self.states.scale_rows(&self.s, extra)
             };
         }
-        let mut s = self.s * (self.fade * extra).sqrt();
+        let mut s = self.states.scale_rows(&self.s, self.fade * extra);
         let mut cols: [SVector<T, N>; N] = core::array::from_fn(|i| self.sq.column(i).into_owned());
         add_columns(&mut s, &mut cols);
         s
@@ -245,13 +270,25 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Sq
         adapter.after_predict(&mut step);
         let lambda = step.fade_factor();
         let mut factor = if A::NEEDS_SPLIT { SMatrix::zeros() } else { sq };
+        // A block fade scales the selected rows of every deviation; the
+        // scalar fade (every state) scales the weights, as it always has.
+        let weight = if self.states.is_all() || lambda == T::one() {
+            lambda
+        } else {
+            let root = lambda.sqrt();
+            for d in propagated.pairs.as_flattened_mut() {
+                self.states.scale_vector(d, root);
+            }
+            self.states.scale_vector(&mut propagated.center, root);
+            T::one()
+        };
         Self::fold(
             self.time_update,
             &mut factor,
             &mut propagated.pairs,
-            (self.weights.other * lambda).sqrt(),
+            (self.weights.other * weight).sqrt(),
         );
-        weighted_rank_one(&mut factor, &propagated.center, self.weights.cov0 * lambda).map_err(
+        weighted_rank_one(&mut factor, &propagated.center, self.weights.cov0 * weight).map_err(
             |e| FilterError::DowndateFailed {
                 column: 0,
                 index: e.index,
@@ -301,9 +338,18 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         let split = A::NEEDS_SPLIT.then(|| {
             match (self.pending, effective_jacobian(&prior, &measured.cross)) {
                 (true, Some(h)) => {
-                    let gp = h * self.s;
                     let gq = h * self.sq;
-                    (gp * gp.transpose() * self.fade, gq * gq.transpose())
+                    let gp = if self.states.is_all() {
+                        h * self.s
+                    } else {
+                        h * self.states.scale_rows(&self.s, self.fade)
+                    };
+                    let fade = if self.states.is_all() {
+                        self.fade
+                    } else {
+                        T::one()
+                    };
+                    (gp * gp.transpose() * fade, gq * gq.transpose())
                 }
                 _ => (c - r, SMatrix::zeros()),
             }

@@ -2,7 +2,7 @@ use nalgebra::{SMatrix, SVector};
 
 use super::outcome::{adapt_checked, joseph_gain};
 use super::pending::PendingCovariance;
-use super::{Form, PredictForm, UpdateForm};
+use super::{FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::error::ensure_finite;
 use crate::linalg::{cholesky_semidefinite, mirror_lower, solve_lower, solve_lower_transpose};
@@ -18,7 +18,8 @@ use crate::{
 /// covariance apart from `Q`. Update redraws the sigma points from
 /// `P⁻ = λ Φ P Φᵀ + Q` (so, on a linear model, the result equals the Kalman
 /// filter exactly), and applies `P⁺ = P⁻ − K P_xzᵀ − P_xz Kᵀ + K C Kᵀ`, the
-/// expanded Joseph form with `P_xz` in place of `P Hᵀ`.
+/// expanded Joseph form with `P_xz` in place of `P Hᵀ`, with `K R Kᵀ` taken
+/// through a factor of `R` ([`joseph_factored_noise`](crate::linalg::joseph_factored_noise)).
 ///
 /// ```
 /// use kestrel_core::form::UnscentedForm;
@@ -69,6 +70,27 @@ impl<T: Real, const N: usize> UnscentedForm<T, N> {
     /// The sigma-point weights for this state size.
     pub fn weights(&self) -> &SigmaWeights<T> {
         &self.weights
+    }
+
+    /// Selects the states an adapter's fade scales (default: all, the
+    /// scalar fade): the sigma points of the update are drawn from
+    /// `D P_prop D + Q`, `D = diag(√λ on the selected states, 1
+    /// elsewhere)`. See [`FadeStates`].
+    ///
+    /// ```
+    /// use kestrel_core::form::{FadeStates, UnscentedForm};
+    /// use kestrel_core::nalgebra::Matrix2;
+    /// let mut form = UnscentedForm::new(&Matrix2::<f64>::identity()).unwrap();
+    /// form.set_fade_states(FadeStates::range(0..1));
+    /// assert_eq!(form.fade_states().count(), 1);
+    /// ```
+    pub fn set_fade_states(&mut self, states: FadeStates<N>) {
+        self.cov.set_fade_states(states);
+    }
+
+    /// The states a fade scales.
+    pub fn fade_states(&self) -> FadeStates<N> {
+        self.cov.fade_states()
     }
 }
 
@@ -178,6 +200,8 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         let gain = joseph_gain(
             &prior,
             &measured.cross.transpose(),
+            &pzz,
+            &r_used,
             &c,
             done.factor_if_unfaded(),
         )?;

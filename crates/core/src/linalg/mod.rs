@@ -16,7 +16,8 @@ mod triangularize;
 pub use cholesky::{cholesky, cholesky_semidefinite, NotPositiveDefinite};
 pub use rank_one::{rank_one_downdate, rank_one_update, weighted_rank_one};
 pub use symmetric::{
-    add_weighted_outer_lower, joseph_expanded, mirror_lower, sandwich, sandwich_transposed,
+    add_weighted_outer_lower, joseph_expanded, joseph_factored_noise, mirror_lower, sandwich,
+    sandwich_transposed,
 };
 pub use triangular::{solve_lower, solve_lower_transpose};
 pub use triangularize::add_columns;

@@ -132,6 +132,57 @@ pub fn joseph_expanded<T: Real, const N: usize, const M: usize>(
     out
 }
 
+/// The Joseph-form covariance update with the measurement noise kept apart
+/// from `C`, given a lower factor `L` of `R = L Lᵀ`:
+///
+/// `(I − K H) P (I − K H)ᵀ + K R Kᵀ = P − K Bᵀ − B Kᵀ + K A Kᵀ + (K L)(K L)ᵀ`
+///
+/// with `B = P Hᵀ` (or `P_xz`) and `A = H P Hᵀ` (or the unscented `P_zz`);
+/// the same value as [`joseph_expanded`] with `C = A + R`, lower triangle
+/// only, mirrored.
+///
+/// Why apart: [`joseph_expanded`] forms `K C`, rounding by `ε ‖K‖ ‖C‖`,
+/// and `K` is large along the small eigenvectors of a badly conditioned `C`
+/// (an `R` with a large eigenvalue next to a small one, such as a windowed
+/// estimate after an outlier). That rounding, `ε ‖K‖² ‖C‖` in the result,
+/// can exceed the posterior's small eigenvalues and make it indefinite (in
+/// `f32` first). Here `R` enters only through the Gram product
+/// `(K L)(K L)ᵀ`, positive semi-definite as computed: the result is the
+/// Joseph form for `L Lᵀ`, which is `R` up to the rounding `R` has anyway,
+/// and the products left are bounded by `P`.
+///
+/// ```
+/// use kestrel_core::linalg::{cholesky, joseph_expanded, joseph_factored_noise};
+/// use kestrel_core::nalgebra::{Matrix1, Matrix2, Matrix1x2};
+/// let p = Matrix2::new(4.0, 1.0, 1.0, 2.0);
+/// let h = Matrix1x2::new(1.0, 0.0);
+/// let r = Matrix1::new(1.0);
+/// let b = p * h.transpose();
+/// let a = h * b;
+/// let k = b / (a[0] + r[0]);
+/// let l = cholesky(&r).unwrap();
+/// let got = joseph_factored_noise(&p, &k, &b, &a, &l);
+/// assert!((got - joseph_expanded(&p, &k, &b, &(a + r))).norm() < 1e-14);
+/// // P⁺ = P − B Bᵀ / 5 = [[0.8, 0.2], [0.2, 1.8]].
+/// assert!((got - Matrix2::new(0.8, 0.2, 0.2, 1.8)).norm() < 1e-14);
+/// ```
+#[inline]
+pub fn joseph_factored_noise<T: Real, const N: usize, const M: usize>(
+    p: &SMatrix<T, N, N>,
+    k: &SMatrix<T, N, M>,
+    b: &SMatrix<T, N, M>,
+    a: &SMatrix<T, M, M>,
+    l: &SMatrix<T, M, M>,
+) -> SMatrix<T, N, N> {
+    // P + E Kᵀ − K Bᵀ with E = K A − B, plus (K L)(K L)ᵀ.
+    let e = k * a - b;
+    let kl = k * l;
+    let mut out = SMatrix::zeros();
+    add_products(&mut out, Some(p), [&e, &-k, &kl], [k, b, &kl], true);
+    mirror_lower(&mut out);
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -182,5 +233,71 @@ mod tests {
         let got = joseph_expanded(&p, &k, &b, &c);
         assert_relative_eq!(got, textbook, epsilon = 1e-12);
         assert_eq!(got, got.transpose());
+        let l = crate::linalg::cholesky(&r).unwrap();
+        let got = joseph_factored_noise(&p, &k, &b, &(h * b), &l);
+        assert_relative_eq!(got, textbook, epsilon = 1e-12);
+        assert_eq!(got, got.transpose());
+    }
+}
+
+#[cfg(test)]
+mod factored_noise_tests {
+    use super::*;
+    use crate::linalg::{cholesky, cholesky_semidefinite, solve_lower, solve_lower_transpose};
+    use nalgebra::{Matrix2, Matrix2x4, Matrix4, Matrix4x2};
+
+    /// An `f32` prior and a nearly rank-one `R` (eigenvalues ≈ 1.1·10⁴ and
+    /// 0.04: a windowed estimate after an outlier), observed in the first
+    /// two of four states; the posterior's smallest eigenvalue is ≈ 10⁻³.
+    #[test]
+    fn factored_noise_keeps_a_badly_conditioned_update_positive_definite() {
+        #[rustfmt::skip]
+        let p = Matrix4::<f32>::from_column_slice(&[
+            1.4457688, -1.4161458, 0.7285837, -0.70843124,
+            -1.4161458, 1.4019858, -0.70843124, 0.7066812,
+            0.7285837, -0.70843124, 0.3739758, -0.35439488,
+            -0.70843124, 0.7066812, -0.35439488, 0.36301905,
+        ]);
+        let r = Matrix2::<f32>::new(7180.731, -5325.0537, -5325.0537, 3948.9946);
+        let h = Matrix2x4::<f32>::new(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0);
+        let hp = h * p;
+        let b = hp.transpose();
+        let a = sandwich_transposed(&hp, &h);
+        let c = a + r;
+        let lc = cholesky(&c).unwrap();
+        let mut kt = hp;
+        solve_lower(&lc, &mut kt);
+        solve_lower_transpose(&lc, &mut kt);
+        let k: Matrix4x2<f32> = kt.transpose();
+        let l = cholesky_semidefinite(&r).unwrap();
+
+        // (I − K H) P (I − K H)ᵀ + K R Kᵀ for this very gain, in f64, with
+        // R and with the factored R̃ = L Lᵀ (R up to the factor's rounding).
+        let (p64, h64, k64) = (p.cast::<f64>(), h.cast::<f64>(), k.cast::<f64>());
+        let i_kh = Matrix4::<f64>::identity() - k64 * h64;
+        let kept = i_kh * p64 * i_kh.transpose();
+        let reference = kept + k64 * r.cast::<f64>() * k64.transpose();
+        let l64 = l.cast::<f64>();
+        let factored = kept + k64 * l64 * l64.transpose() * k64.transpose();
+        let smallest = reference.symmetric_eigenvalues().min();
+        assert!(smallest > 1e-3 && smallest < 1.2e-3, "{smallest}");
+
+        let got = joseph_factored_noise(&p, &k, &b, &a, &l);
+        assert_eq!(got, got.transpose());
+        // Rounding at the level of P, not of K C Kᵀ: 16 ε max|P| ≈ 2.8·10⁻⁶.
+        let bound = 16.0 * f64::from(f32::EPSILON) * p64.abs().max();
+        let err = (got.cast::<f64>() - factored).abs().max();
+        assert!(err < bound, "{err:e}");
+        assert!(cholesky(&got).is_ok());
+        let got_smallest = got.cast::<f64>().symmetric_eigenvalues().min();
+        assert!(
+            (got_smallest - smallest).abs() < 0.01 * smallest,
+            "{got_smallest}"
+        );
+        // Through C the same update rounds by ε ‖K‖² ‖C‖: more than the
+        // smallest eigenvalue, so nothing keeps it positive definite.
+        let expanded = joseph_expanded(&p, &k, &b, &c);
+        let err_expanded = (expanded.cast::<f64>() - reference).abs().max();
+        assert!(err_expanded > smallest, "{err_expanded:e}");
     }
 }

@@ -46,7 +46,7 @@ pub struct SensorSample {
 /// let b: Vec<_> = Simulation::new(&s, 7, &opts).unwrap().collect();
 /// assert_eq!(a.len(), 400); // 2 s at 200 Hz
 /// assert!(a.iter().zip(&b).all(|(x, y)| x.imu == y.imu && x.gnss == y.gnss));
-/// assert_eq!(a.iter().filter(|x| x.gnss.is_some()).count(), 2);
+/// assert_eq!(a.iter().filter(|x| x.gnss.is_some()).count(), 20); // 10 Hz GNSS
 /// ```
 #[derive(Debug)]
 pub struct Simulation {

@@ -2,7 +2,7 @@
 //! whose every arm calls the generic [`Job::run`] once.
 
 use kestrel_adaptive::{HuberInflation, ImprovedAdaptive, SageHusaFading, StrongTracking};
-use kestrel_core::form::{SquareRootForm, UnscentedForm};
+use kestrel_core::form::{FadeStates, SquareRootForm, UnscentedForm};
 use kestrel_core::sigma::MerweParams;
 use kestrel_core::{Ekf, FilterError, SrUkf, Ukf};
 use nalgebra::{SMatrix, SVector};
@@ -19,33 +19,38 @@ use super::summary::RunSummary;
 use crate::engine::{Ins15, Ins18};
 use crate::measurement::{GnssAntenna, Odometer};
 use crate::odometer::{FuzzyOdometer, InsOdometer16, MaxThreshold, ScaleFactorProcess};
-use crate::scenario::{ErrorModelKind, FilterKind, FilterSetup, MeasurementKind, Scenario};
+use crate::scenario::{
+    ErrorModelKind, FadeBlock, FilterKind, FilterSetup, MeasurementKind, Scenario,
+};
 
 /// A GNSS-aided filter with adapter `$a6` (m = 6) or `$a9` (m = 9, the
 /// attitude measurement), each a `Result<_, FilterError>`, on the 15- or
 /// 18-state model.
 macro_rules! gnss_filter {
-    ($job:ident, $a6:expr, $a9:expr) => {{
+    ($job:ident, $a6:expr, $a9:expr) => {
+        gnss_filter!($job, FadeBlock::All, $a6, $a9)
+    };
+    ($job:ident, $fade:expr, $a6:expr, $a9:expr) => {{
         let sc = $job.scenario;
         let s = &sc.filter;
         match (s.error_model, s.measurement) {
             (ErrorModelKind::Ins15, MeasurementKind::GnssPositionVelocity) => {
-                let f = ekf::<15, _>(&$job, s, $a6)?;
+                let f = ekf::<15, _>(&$job, s, $a6, $fade)?;
                 let g = gnss_pv(&$job)?;
                 $job.run(Ins15::new(s.imu_model), f, g)
             }
             (ErrorModelKind::Ins18, MeasurementKind::GnssPositionVelocity) => {
-                let f = ekf::<18, _>(&$job, s, $a6)?;
+                let f = ekf::<18, _>(&$job, s, $a6, $fade)?;
                 let g = gnss_pv(&$job)?;
                 $job.run(Ins18::new(s.imu_model), f, g)
             }
             (ErrorModelKind::Ins15, MeasurementKind::AttitudeVelocityPosition) => {
-                let f = ekf::<15, _>(&$job, s, $a9)?;
+                let f = ekf::<15, _>(&$job, s, $a9, $fade)?;
                 let g = avp(&$job)?;
                 $job.run(Ins15::new(s.imu_model), f, g)
             }
             (ErrorModelKind::Ins18, MeasurementKind::AttitudeVelocityPosition) => {
-                let f = ekf::<18, _>(&$job, s, $a9)?;
+                let f = ekf::<18, _>(&$job, s, $a9, $fade)?;
                 let g = avp(&$job)?;
                 $job.run(Ins18::new(s.imu_model), f, g)
             }
@@ -84,8 +89,10 @@ pub(crate) fn dispatch<C: FnMut(&EpochRecord)>(
             forgetting,
             reserve,
             lambda_max,
+            fade_states,
         } => gnss_filter!(
             job,
+            fade_states,
             SageHusaFading::<f64, 6>::with_params(forgetting, reserve, lambda_max),
             SageHusaFading::<f64, 9>::with_params(forgetting, reserve, lambda_max)
         ),
@@ -94,8 +101,10 @@ pub(crate) fn dispatch<C: FnMut(&EpochRecord)>(
             reserve,
             lambda_max,
             significance,
+            fade_states,
         } => gnss_filter!(
             job,
+            fade_states,
             ImprovedAdaptive::<f64, 6>::with_params(forgetting, significance, reserve, lambda_max),
             ImprovedAdaptive::<f64, 9>::with_params(forgetting, significance, reserve, lambda_max)
         ),
@@ -104,10 +113,16 @@ pub(crate) fn dispatch<C: FnMut(&EpochRecord)>(
             HuberInflation::<f64, 6>::new(significance),
             HuberInflation::<f64, 9>::new(significance)
         ),
-        FilterKind::StrongTrackingFading { rho, softening } => gnss_filter!(
+        FilterKind::StrongTrackingFading {
+            rho,
+            softening,
+            lambda_max,
+            fade_states,
+        } => gnss_filter!(
             job,
-            StrongTracking::new(rho, softening),
-            StrongTracking::new(rho, softening)
+            fade_states,
+            StrongTracking::new(rho, softening).and_then(|s| s.with_max_fade(lambda_max)),
+            StrongTracking::new(rho, softening).and_then(|s| s.with_max_fade(lambda_max))
         ),
         FilterKind::MaxThreshold { threshold } => {
             odometer(job, Ok(MaxThreshold::<f64>::new(threshold)))
@@ -136,11 +151,13 @@ fn p0_15(setup: &FilterSetup) -> SMatrix<f64, 15, 15> {
     p
 }
 
-/// The closed-loop EKF of `N` states with P0 from the setup and `adapter`.
+/// The closed-loop EKF of `N` states with P0 from the setup, `adapter`,
+/// and fades restricted to `fade`.
 fn ekf<const N: usize, A>(
     job: &Job<'_, impl FnMut(&EpochRecord)>,
     setup: &FilterSetup,
     adapter: Result<A, FilterError>,
+    fade: FadeBlock,
 ) -> Result<Ekf<f64, N, A>, RunError> {
     let invalid = |error| RunError::InvalidParameter {
         filter: job.label,
@@ -153,9 +170,13 @@ fn ekf<const N: usize, A>(
     }
     let p0 =
         SMatrix::<f64, N, N>::from_diagonal(&SVector::from_iterator(std.iter().map(|s| s * s)));
-    Ok(Ekf::new(SVector::zeros(), p0)
+    let mut filter = Ekf::new(SVector::zeros(), p0)
         .map_err(invalid)?
-        .with_adapter(adapter))
+        .with_adapter(adapter);
+    filter
+        .form_mut()
+        .set_fade_states(FadeStates::range(fade.states(N)));
+    Ok(filter)
 }
 
 /// The filter's GNSS `R`, if the scenario has a receiver and the setup an R.
@@ -221,6 +242,6 @@ fn odometer<C: FnMut(&EpochRecord), P: OdometerProcessing>(
         processing,
     };
     let scale = ScaleFactorProcess::new(scale_tau, config.scale_markov_sigma, s.p0.odometer_scale);
-    let filter = ekf::<16, _>(&job, s, Ok(()))?;
+    let filter = ekf::<16, _>(&job, s, Ok(()), FadeBlock::All)?;
     job.run(InsOdometer16::new(s.imu_model, scale), filter, aiding)
 }

@@ -12,7 +12,7 @@ use super::record::EpochRecord;
 /// use kestrel_nav::experiment::{run, RunOptions};
 /// let s = kestrel_nav::scenario::by_name("000").unwrap();
 /// let r = run(&s, &s.filters[0], 0, &RunOptions::default().with_duration(5.0)).unwrap();
-/// assert_eq!(r.summary.epochs, 5); // 1 Hz GNSS
+/// assert_eq!(r.summary.epochs, 50); // 10 Hz GNSS
 /// assert!(r.summary.rms_position.norm() < 20.0);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -20,8 +20,10 @@ pub enum FilterKind {
         forgetting: f64,
         /// Reserve coefficient `γ ≥ 1` of the divergence test.
         reserve: f64,
-        /// Upper clamp of the fading factor λ.
+        /// Upper clamp of the fading factor λ (dimensionless, ≥ 1).
         lambda_max: f64,
+        /// The error states the fade scales.
+        fade_states: FadeBlock,
     },
     /// Paper 000's improved adaptive filter: [`SageHusaFading`](Self::SageHusaFading)
     /// plus χ² outlier compression of the innovation.
@@ -30,10 +32,12 @@ pub enum FilterKind {
         forgetting: f64,
         /// Reserve coefficient `γ`.
         reserve: f64,
-        /// Upper clamp of λ.
+        /// Upper clamp of λ (dimensionless, ≥ 1).
         lambda_max: f64,
         /// Significance α of the χ²(m) compression threshold.
         significance: f64,
+        /// The error states the fade scales.
+        fade_states: FadeBlock,
     },
     /// Paper 001: federated filter, local GNSS Kalman filter plus a local
     /// UKF on the nonlinear INS model, information sharing by EDOP.
@@ -79,7 +83,48 @@ pub enum FilterKind {
         rho: f64,
         /// Softening coefficient β ≥ 1 on R.
         softening: f64,
+        /// Upper clamp of λ (dimensionless, ≥ 1; `f64::INFINITY`: none, as
+        /// in the paper).
+        lambda_max: f64,
+        /// The error states the fade scales.
+        fade_states: FadeBlock,
     },
+}
+
+/// The block of error states a fading filter's fade `λ` scales:
+/// `P⁻ = D Φ P Φᵀ D + Q` with `D = √λ` on the block and 1 elsewhere
+/// (see `kestrel_core::form::FadeStates`). The papers write the scalar fade
+/// ([`All`](Self::All)); fading only what the fixes measure keeps the fade
+/// from inflating the unobservable directions (heading, sensor biases).
+///
+/// ```
+/// use kestrel_nav::scenario::FadeBlock;
+/// assert_eq!(FadeBlock::VelocityPosition.states(18), 3..9);
+/// assert_eq!(FadeBlock::All.states(15), 0..15);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FadeBlock {
+    /// Every error state (the scalar fade `λ Φ P Φᵀ`).
+    #[default]
+    All,
+    /// Velocity and position errors (states 3–8 of the 15/18-state
+    /// models `[φ, δv, δr, …]`: δv and δr north, east, down, in m/s and m).
+    VelocityPosition,
+    /// Attitude, velocity and position errors (states 0–8: φ in rad, δv,
+    /// δr).
+    AttitudeVelocityPosition,
+}
+
+impl FadeBlock {
+    /// The faded state indices for an `n`-state model (clamped to `n`).
+    pub fn states(&self, n: usize) -> core::ops::Range<usize> {
+        let range = match self {
+            Self::All => 0..n,
+            Self::VelocityPosition => 3..9,
+            Self::AttitudeVelocityPosition => 0..9,
+        };
+        range.start.min(n)..range.end.min(n)
+    }
 }
 
 impl FilterKind {

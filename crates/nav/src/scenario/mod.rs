@@ -19,7 +19,7 @@ mod units;
 
 use nalgebra::Vector3;
 
-pub use filters::FilterKind;
+pub use filters::{FadeBlock, FilterKind};
 pub use s000::scenario_000;
 pub use s001::scenario_001;
 pub use s002::scenario_002;
