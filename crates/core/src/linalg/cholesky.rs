@@ -53,7 +53,11 @@ pub fn cholesky<T: Real, const N: usize>(
 /// A pivot within `N·ε·max|diag|` of zero gives a zero column, provided the
 /// rest of that column is zero to the same precision (as it must be for a
 /// semi-definite matrix); otherwise the matrix is indefinite and the pivot
-/// index is returned.
+/// index is returned. A pivot above `N·ε` times its own original diagonal
+/// element is kept however small against the largest one, so a badly
+/// scaled positive-definite matrix (variances 10⁻⁸ next to 10²) keeps its
+/// small variances: the rounding of a pivot is relative to its own
+/// diagonal.
 ///
 /// ```
 /// use kestrel_core::linalg::cholesky_semidefinite;
@@ -69,12 +73,13 @@ pub fn cholesky_semidefinite<T: Real, const N: usize>(
     for i in 0..N {
         scale = scale.max(a[(i, i)].abs());
     }
-    let tol = epsilon::<T>() * lit::<T>(N as f64) * scale;
-    factor(a, |k, d, _original, column: &[T]| {
+    let rel = epsilon::<T>() * lit::<T>(N as f64);
+    let tol = rel * scale;
+    factor(a, |k, d, original, column: &[T]| {
         if !d.is_finite() || d < -tol {
             return Err(NotPositiveDefinite { index: k });
         }
-        if d > tol {
+        if d > tol || (d > T::zero() && d > rel * original.abs()) {
             return Ok(Some(d.sqrt()));
         }
         // A zero pivot of a semi-definite matrix has a zero column below it
@@ -194,5 +199,24 @@ mod tests {
             cholesky_semidefinite(&a),
             Err(NotPositiveDefinite { index: 1 })
         );
+    }
+
+    /// A positive-definite matrix whose variances span 10 orders of
+    /// magnitude (an INS error state: position 10² m², gyro bias 10⁻⁸
+    /// rad²/s²) keeps its small pivot in `f32`, where `N·ε·max|diag|` is
+    /// 3.6·10⁻⁵: the factor is exact (diagonal) and nothing is zeroed.
+    #[test]
+    fn semidefinite_keeps_small_pivots_of_a_badly_scaled_matrix() {
+        let a = Matrix3::new(100.0f32, 0.0, 0.0, 0.0, 1e-8, 0.0, 0.0, 0.0, 0.25);
+        let l = cholesky_semidefinite(&a).unwrap();
+        assert_eq!(l[(0, 0)], 10.0);
+        assert_eq!(l[(1, 1)], 1e-8f32.sqrt());
+        assert_eq!(l[(2, 2)], 0.5);
+        // A rank-deficient matrix still gets its zero column: the pivot of
+        // the second row is 1 − 1 = 0 exactly.
+        let b = Matrix3::new(1.0f32, 1.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 1e-8);
+        let l = cholesky_semidefinite(&b).unwrap();
+        assert_eq!(l[(1, 1)], 0.0);
+        assert_eq!(l[(2, 2)], 1e-8f32.sqrt());
     }
 }

@@ -49,6 +49,7 @@ mod dispatch;
 mod error;
 mod federated;
 mod options;
+mod precision;
 mod record;
 mod run;
 mod summary;
@@ -56,6 +57,10 @@ mod summary;
 pub use data::{SensorSample, Simulation};
 pub use error::RunError;
 pub use options::{PositionAxes, RunOptions};
+pub use precision::{
+    compare_federated_precision, MaxDifference, Outcome, Precision, PrecisionOptions,
+    PrecisionReport, PrecisionRun, PrecisionSetup, StateScaling,
+};
 pub use record::{Adaptation, EpochRecord};
 pub use run::{run, run_with, RunResult};
 pub use summary::RunSummary;

@@ -9,8 +9,9 @@ pub mod trajectory;
 
 pub use sensors::{
     sensor_rng, AttitudeConfig, AttitudeSensor, GaussMarkov, GaussMarkov3, GnssConfig, GnssSensor,
-    ImuErrors, ImuSensor, NoiseWindow, OdometerConfig, OdometerFault, OdometerFaultKind,
-    OdometerSensor, Outlier, OutlierKind, ReportedStd, SensorStream, SimRng, Simulated, TimeWindow,
+    ImuErrors, ImuSensor, MultipathBursts, NoiseWindow, OdometerConfig, OdometerFault,
+    OdometerFaultKind, OdometerSensor, Outlier, OutlierKind, ReportedStd, SensorStream, SimRng,
+    Simulated, TimeWindow,
 };
 pub use trajectory::{
     ClimbRate, ImuStream, Motion, Segment, Trajectory, TrajectoryError, TrajectoryErrorKind,

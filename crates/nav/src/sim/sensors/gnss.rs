@@ -5,6 +5,7 @@ use rand::RngExt;
 use rand_distr::UnitSphere;
 
 use super::gnss_config::{GnssConfig, OutlierKind, ReportedStd};
+use super::multipath::{maybe_start, Burst};
 use super::rng::{normal3, sensor_rng, uniform, SensorStream, SimRng};
 use super::schedule::Schedule;
 use super::simulated::Simulated;
@@ -22,7 +23,8 @@ use crate::state::NavState;
 /// stream ([`SensorStream::Gnss`]), drawn for every fix whatever the
 /// windows and outages, and outliers from another
 /// ([`SensorStream::GnssOutliers`]), so editing a window leaves the noise
-/// of every fix unchanged.
+/// of every fix unchanged; multipath bursts draw from a third
+/// ([`SensorStream::GnssMultipath`]).
 ///
 /// ```
 /// use kestrel_nav::{Ellipsoid, Euler, Geodetic, NavState, nalgebra::Vector3};
@@ -40,6 +42,10 @@ pub struct GnssSensor {
     earth: Ellipsoid,
     rng: SimRng,
     outlier_rng: SimRng,
+    multipath_rng: SimRng,
+    /// The burst in progress per outlier episode (used by
+    /// [`OutlierKind::Multipath`] only).
+    bursts: Vec<Option<Burst>>,
     schedule: Schedule,
 }
 
@@ -53,10 +59,12 @@ impl GnssSensor {
     /// ```
     pub fn new(config: GnssConfig, earth: Ellipsoid, seed: u64) -> Self {
         Self {
-            config,
             earth,
             rng: sensor_rng(seed, SensorStream::Gnss),
             outlier_rng: sensor_rng(seed, SensorStream::GnssOutliers),
+            multipath_rng: sensor_rng(seed, SensorStream::GnssMultipath),
+            bursts: vec![None; config.outliers.len()],
+            config,
             schedule: Schedule::new(),
         }
     }
@@ -132,7 +140,11 @@ impl GnssSensor {
         let mut err_p = std_p.component_mul(&normal3(&mut self.rng));
         let mut err_v = std_v.component_mul(&normal3(&mut self.rng));
         let mut outlier = false;
-        for o in self.config.outliers.iter().filter(|o| o.window.contains(t)) {
+        for (o, burst) in self.config.outliers.iter().zip(self.bursts.iter_mut()) {
+            if !o.window.contains(t) {
+                *burst = None;
+                continue;
+            }
             match o.kind {
                 OutlierKind::Patch {
                     position_offset,
@@ -155,6 +167,21 @@ impl GnssSensor {
                         err_p += random_vector(&mut self.outlier_rng, position);
                         err_v += random_vector(&mut self.outlier_rng, velocity);
                         outlier = true;
+                    }
+                }
+                OutlierKind::Multipath(m) => {
+                    let rng = &mut self.multipath_rng;
+                    let mut error = burst.and_then(|b| b.error(&m, t, rng));
+                    if error.is_none() {
+                        *burst = maybe_start(&m, t, rng);
+                        error = burst.and_then(|b| b.error(&m, t, rng));
+                    }
+                    if let Some((p, v)) = error {
+                        err_p += p;
+                        err_v += v;
+                        outlier = true;
+                    } else {
+                        *burst = None;
                     }
                 }
             }

@@ -2,6 +2,7 @@
 
 use nalgebra::Vector3;
 
+use super::multipath::MultipathBursts;
 use super::window::TimeWindow;
 
 /// A change of the white measurement noise over a window (the base values
@@ -83,6 +84,10 @@ pub enum OutlierKind {
         /// Size range of the velocity error, m/s.
         velocity: (f64, f64),
     },
+    /// Randomly timed multipath / NLOS bursts inside the window (see
+    /// [`MultipathBursts`]); a burst running at the end of the window
+    /// stops there.
+    Multipath(MultipathBursts),
 }
 
 /// An outlier episode.

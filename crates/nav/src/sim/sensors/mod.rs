@@ -7,6 +7,7 @@ mod gnss_config;
 mod imu;
 mod imu_errors;
 mod markov;
+mod multipath;
 mod odometer;
 mod rng;
 mod schedule;
@@ -19,6 +20,7 @@ pub use gnss_config::{GnssConfig, NoiseWindow, Outlier, OutlierKind, ReportedStd
 pub use imu::ImuSensor;
 pub use imu_errors::ImuErrors;
 pub use markov::{GaussMarkov, GaussMarkov3};
+pub use multipath::MultipathBursts;
 pub use odometer::{OdometerConfig, OdometerFault, OdometerFaultKind, OdometerSensor};
 pub use rng::{sensor_rng, SensorStream, SimRng};
 pub use simulated::Simulated;

@@ -29,6 +29,9 @@ pub enum SensorStream {
     GnssOutliers = 6,
     /// Odometer fault draws (apart from its white noise).
     OdometerFaults = 7,
+    /// GNSS multipath burst draws ([`MultipathBursts`](super::MultipathBursts)),
+    /// apart from the other outliers so adding bursts leaves them unchanged.
+    GnssMultipath = 8,
 }
 
 /// The generator for `stream` under the scenario seed `seed`.

@@ -1,0 +1,756 @@
+//! Paper 001's numerical claim put to the test: the federated UKF and
+//! SR-UKF error filters run in `f64` and in `f32`, in the natural units of
+//! the error state or in badly scaled ones, over the same sensor data.
+//!
+//! The navigation solution (mechanisation, feedback) stays `f64`; only the
+//! two local error-state filters and the fusion change precision. Their
+//! models are built in `f64` (`Φ`, `Q_d`, `H`, `R`) and rounded to the
+//! filter's type, and the fused correction is fed back in `f64`.
+//!
+//! A scaled set-up works on `x' = D x` with `D` diagonal: `Φ' = D Φ D⁻¹`,
+//! `Q' = D Q D`, `H' = H D⁻¹`, `P₀' = D P₀ D`; in exact arithmetic every
+//! filter gives the same corrections as in natural units.
+//!
+//! What it shows on scenario 001 (600 s): in `f64` the two filters differ
+//! by rounding only (about 10⁻⁹ m); with the paper's tuning both complete
+//! in `f32` and in [`StateScaling::mixed`] units within a millimetre of
+//! `f64`; with the filters' process noise densities ×1/100
+//! ([`PrecisionOptions::small_process_noise`]) the `f32` UKF in mixed units
+//! loses positive definiteness after 90–120 s while the SR-UKF completes.
+
+use core::fmt;
+
+use kestrel_adaptive::federated::{FederatedFilter, PredictSet, Sharing};
+use kestrel_core::form::{SquareRootForm, UnscentedForm, UpdateForm};
+use kestrel_core::real::lit;
+use kestrel_core::sigma::MerweParams;
+use kestrel_core::{Ekf, Filter, FilterError, Real, SrUkf, Ukf};
+use kestrel_models::LinearProcess;
+use nalgebra::{SMatrix, SVector, Vector3};
+
+use super::data::{Digest, Simulation};
+use super::error::RunError;
+use super::options::{PositionAxes, RunOptions};
+use super::record::{Adaptation, EpochRecord};
+use super::summary::{Accumulator, RunSummary};
+use crate::engine::{feed_back, ErrorSystem, Ins15, SensorCorrections};
+use crate::error_model::ForcingMean;
+use crate::measurement::{ErrorMeasurement, GnssAntenna, InsContext};
+use crate::mechanisation::Strapdown;
+use crate::scenario::{ErrorModelKind, FilterKind, MeasurementKind, Scenario};
+
+/// The floating-point type of the error-state filters.
+///
+/// ```
+/// assert_eq!(kestrel_nav::experiment::Precision::F32.to_string(), "f32");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Precision {
+    /// Double precision (`f64`).
+    F64,
+    /// Single precision (`f32`).
+    F32,
+}
+
+impl fmt::Display for Precision {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Precision::F64 => "f64",
+            Precision::F32 => "f32",
+        })
+    }
+}
+
+/// The units of the 15 error states the filters work in: state `i` is
+/// multiplied by `factors[i]` (attitude, velocity, position, gyro bias,
+/// accelerometer bias, 3 each).
+///
+/// ```
+/// use kestrel_nav::experiment::StateScaling;
+/// assert_eq!(StateScaling::natural().factors, [1.0; 15]);
+/// assert_eq!(StateScaling::mixed().label(), "mixed units");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StateScaling {
+    /// The factor of each state.
+    pub factors: [f64; 15],
+    label: &'static str,
+}
+
+impl StateScaling {
+    /// The model's own units: rad, m/s, m, rad/s, m/s².
+    ///
+    /// ```
+    /// assert_eq!(kestrel_nav::experiment::StateScaling::natural().label(), "natural units");
+    /// ```
+    pub fn natural() -> Self {
+        Self {
+            factors: [1.0; 15],
+            label: "natural units",
+        }
+    }
+
+    /// Mixed units as a careless implementation might pick them: attitude
+    /// in degrees, velocity in mm/s, position in radians of arc on the
+    /// Earth (÷ 6 378 137 m), gyro bias in rad/s, accelerometer bias in
+    /// µg. With paper 001's P₀ the variances span about 10⁻¹² (position)
+    /// to 10¹¹ (accelerometer bias): 23 orders of magnitude instead of 10.
+    ///
+    /// ```
+    /// let s = kestrel_nav::experiment::StateScaling::mixed();
+    /// assert_eq!(s.factors[3], 1000.0);
+    /// ```
+    pub fn mixed() -> Self {
+        let deg = 180.0 / core::f64::consts::PI;
+        let arc = 1.0 / 6_378_137.0;
+        let micro_g = 1e6 / 9.80665;
+        let mut factors = [1.0; 15];
+        for i in 0..3 {
+            factors[i] = deg;
+            factors[3 + i] = 1000.0;
+            factors[6 + i] = arc;
+            factors[12 + i] = micro_g;
+        }
+        Self {
+            factors,
+            label: "mixed units",
+        }
+    }
+
+    /// A one-line description.
+    ///
+    /// ```
+    /// assert_eq!(kestrel_nav::experiment::StateScaling::mixed().label(), "mixed units");
+    /// ```
+    pub fn label(&self) -> &'static str {
+        self.label
+    }
+
+    fn vector(&self) -> SVector<f64, 15> {
+        SVector::from(self.factors)
+    }
+}
+
+/// One configuration of the comparison.
+///
+/// ```
+/// use kestrel_nav::experiment::{Precision, PrecisionSetup, StateScaling};
+/// let s = PrecisionSetup { precision: Precision::F32, scaling: StateScaling::natural() };
+/// assert_eq!(s.to_string(), "f32, natural units");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrecisionSetup {
+    /// The filters' floating-point type.
+    pub precision: Precision,
+    /// The units of the error state.
+    pub scaling: StateScaling,
+}
+
+impl fmt::Display for PrecisionSetup {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}, {}", self.precision, self.scaling.label())
+    }
+}
+
+/// What [`compare_federated_precision`] runs.
+///
+/// ```
+/// let o = kestrel_nav::experiment::PrecisionOptions::default();
+/// assert_eq!((o.setups.len(), o.process_noise_scale), (4, 1.0));
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct PrecisionOptions {
+    /// Duration, IMU rate, covariance interval… (records are never kept).
+    pub run: RunOptions,
+    /// The configurations, each run with both filters. The `f64` natural
+    /// one is always run (it is the reference of the difference).
+    pub setups: Vec<PrecisionSetup>,
+    /// Factor on the white-noise densities (gyro ARW, accelerometer VRW)
+    /// of the filters' IMU model, hence on `Q`; the simulated sensors are
+    /// unchanged. `1` is the scenario's tuning.
+    pub process_noise_scale: f64,
+}
+
+impl PrecisionOptions {
+    /// The default set-ups with the filters' process noise densities at
+    /// 1/100 of the scenario's (`Q` at 10⁻⁴): an over-confident tuning,
+    /// the classic way to make a covariance lose definiteness to rounding.
+    ///
+    /// ```
+    /// let o = kestrel_nav::experiment::PrecisionOptions::small_process_noise();
+    /// assert_eq!(o.process_noise_scale, 0.01);
+    /// ```
+    pub fn small_process_noise() -> Self {
+        Self {
+            process_noise_scale: 0.01,
+            ..Self::default()
+        }
+    }
+}
+
+impl Default for PrecisionOptions {
+    /// `f64` and `f32`, each in natural and in mixed units, the scenario's
+    /// process noise.
+    fn default() -> Self {
+        let setups = [Precision::F64, Precision::F32]
+            .into_iter()
+            .flat_map(|precision| {
+                [StateScaling::natural(), StateScaling::mixed()]
+                    .map(|scaling| PrecisionSetup { precision, scaling })
+            })
+            .collect();
+        Self {
+            run: RunOptions::default(),
+            setups,
+            process_noise_scale: 1.0,
+        }
+    }
+}
+
+/// How one filter run ended.
+///
+/// ```
+/// use kestrel_nav::experiment::{Outcome, RunError};
+/// let e = RunError::Incompatible { filter: "federated UKF", reason: "no GNSS" };
+/// assert!(!Outcome::Failed(e).completed());
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub enum Outcome {
+    /// Every epoch was processed.
+    Completed,
+    /// The run stopped: the error names the time and what failed.
+    Failed(RunError),
+}
+
+impl Outcome {
+    /// Whether the run completed.
+    ///
+    /// ```
+    /// assert!(kestrel_nav::experiment::Outcome::Completed.completed());
+    /// ```
+    pub fn completed(&self) -> bool {
+        matches!(self, Outcome::Completed)
+    }
+
+    /// The time of the failure, s (`None` when completed; NaN for a
+    /// failure before the first sample, such as an invalid parameter).
+    ///
+    /// ```
+    /// assert_eq!(kestrel_nav::experiment::Outcome::Completed.failure_time(), None);
+    /// ```
+    pub fn failure_time(&self) -> Option<f64> {
+        match self {
+            Outcome::Completed => None,
+            Outcome::Failed(
+                RunError::Filter { time, .. }
+                | RunError::Fusion { time, .. }
+                | RunError::NonFinite { time, .. },
+            ) => Some(*time),
+            Outcome::Failed(_) => Some(f64::NAN),
+        }
+    }
+}
+
+impl fmt::Display for Outcome {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Outcome::Completed => f.write_str("completed"),
+            Outcome::Failed(e) => write!(f, "failed: {e}"),
+        }
+    }
+}
+
+/// One filter in one set-up.
+///
+/// ```
+/// use kestrel_nav::experiment::*;
+/// let s = kestrel_nav::scenario::by_name("001").unwrap();
+/// let o = PrecisionOptions { run: RunOptions::default().with_duration(2.0), setups: vec![], ..Default::default() };
+/// let row = &compare_federated_precision(&s, 1, &o).unwrap().runs[1];
+/// assert_eq!((row.filter, row.from_f64.position), ("federated SR-UKF", 0.0));
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct PrecisionRun {
+    /// The set-up.
+    pub setup: PrecisionSetup,
+    /// The filter's label ([`FilterKind::label`]).
+    pub filter: &'static str,
+    /// How it ended.
+    pub outcome: Outcome,
+    /// RMS over the epochs processed (up to the failure, if any).
+    pub summary: RunSummary,
+    /// Largest difference of the navigation errors from the same filter's
+    /// `f64` natural-unit run, over the epochs both processed.
+    pub from_f64: MaxDifference,
+}
+
+/// The largest differences between two runs' navigation errors over their
+/// common epochs.
+///
+/// ```
+/// assert_eq!(kestrel_nav::experiment::MaxDifference::default().epochs, 0);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MaxDifference {
+    /// Position, m (3-D).
+    pub position: f64,
+    /// Velocity, m/s (3-D).
+    pub velocity: f64,
+    /// Attitude, rad (3-D).
+    pub attitude: f64,
+    /// Epochs compared.
+    pub epochs: usize,
+}
+
+/// The comparison of [`compare_federated_precision`]: every run, and the
+/// `f64` (natural units) UKF against SR-UKF difference. `Display` prints
+/// it as a table, one row per run.
+///
+/// ```
+/// use kestrel_nav::experiment::*;
+/// let s = kestrel_nav::scenario::by_name("001").unwrap();
+/// let o = PrecisionOptions { run: RunOptions::default().with_duration(2.0), setups: vec![], ..Default::default() };
+/// let r = compare_federated_precision(&s, 1, &o).unwrap();
+/// assert!(r.to_string().contains("f64 max |UKF − SR-UKF| over 2 epochs"));
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct PrecisionReport {
+    /// The scenario's name.
+    pub scenario: String,
+    /// The seed of the sensor data.
+    pub seed: u64,
+    /// The factor on the filters' process noise densities.
+    pub process_noise_scale: f64,
+    /// One row per set-up and filter (UKF first).
+    pub runs: Vec<PrecisionRun>,
+    /// Largest |UKF − SR-UKF| of the navigation errors, `f64`, natural
+    /// units.
+    pub f64_difference: MaxDifference,
+}
+
+impl PrecisionReport {
+    /// The row of `filter` in `setup`.
+    ///
+    /// ```
+    /// use kestrel_nav::experiment::*;
+    /// let s = kestrel_nav::scenario::by_name("001").unwrap();
+    /// let o = PrecisionOptions { run: RunOptions::default().with_duration(3.0), ..Default::default() };
+    /// let r = compare_federated_precision(&s, 1, &o).unwrap();
+    /// let f32_ukf = r.run("federated UKF", Precision::F32, "natural units").unwrap();
+    /// assert!(f32_ukf.outcome.completed() && f32_ukf.summary.epochs == 3);
+    /// ```
+    pub fn run(&self, filter: &str, precision: Precision, scaling: &str) -> Option<&PrecisionRun> {
+        self.runs.iter().find(|r| {
+            r.filter == filter
+                && r.setup.precision == precision
+                && r.setup.scaling.label() == scaling
+        })
+    }
+}
+
+impl fmt::Display for PrecisionReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "{} seed {}: federated UKF vs SR-UKF by precision (filter process noise densities ×{})",
+            self.scenario, self.seed, self.process_noise_scale
+        )?;
+        writeln!(
+            f,
+            "{:<22} {:<18} {:>6} {:>23} {:>23} {:>17}  outcome",
+            "set-up",
+            "filter",
+            "epochs",
+            "position RMS (m)",
+            "velocity RMS (m/s)",
+            "Δ from f64 (m)"
+        )?;
+        for r in &self.runs {
+            let m = &r.summary;
+            writeln!(
+                f,
+                "{:<22} {:<18} {:>6} {:>7.3} {:>7.3} {:>7.3} {:>7.4} {:>7.4} {:>7.4} {:>17.1e}  {}",
+                r.setup.to_string(),
+                r.filter,
+                m.epochs,
+                m.rms_position.x,
+                m.rms_position.y,
+                m.rms_position.z,
+                m.rms_velocity.x,
+                m.rms_velocity.y,
+                m.rms_velocity.z,
+                r.from_f64.position,
+                r.outcome
+            )?;
+        }
+        let d = &self.f64_difference;
+        write!(
+            f,
+            "f64 max |UKF − SR-UKF| over {} epochs: position {:.1e} m, velocity {:.1e} m/s, attitude {:.1e} rad",
+            d.epochs, d.position, d.velocity, d.attitude
+        )
+    }
+}
+
+/// Runs paper 001's federated UKF and SR-UKF (the scenario's
+/// [`FilterKind::FederatedUkf`] and [`FilterKind::FederatedSrUkf`]) in
+/// every set-up of `options` on the sensor data of `seed`, and compares
+/// the `f64` natural-unit runs epoch by epoch. A filter that fails is
+/// reported with the time and the error, and the others go on.
+///
+/// # Errors
+/// [`RunError::Incompatible`] when the scenario lacks the federated
+/// filters, the 15-state model or GNSS position and velocity;
+/// [`RunError::InvalidParameter`] for a process noise scale that is not
+/// positive and finite or sigma-point parameters out of range;
+/// [`RunError::Trajectory`] when its trajectory does not compile.
+///
+/// ```
+/// use kestrel_nav::experiment::{compare_federated_precision, PrecisionOptions, RunOptions};
+/// let s = kestrel_nav::scenario::by_name("001").unwrap();
+/// let opts = PrecisionOptions {
+///     run: RunOptions::default().with_duration(5.0),
+///     setups: vec![],
+///     process_noise_scale: 1.0,
+/// };
+/// let r = compare_federated_precision(&s, 1, &opts).unwrap();
+/// assert_eq!(r.runs.len(), 2); // f64 natural: UKF, SR-UKF
+/// assert!(r.f64_difference.position < 1e-6);
+/// ```
+pub fn compare_federated_precision(
+    scenario: &Scenario,
+    seed: u64,
+    options: &PrecisionOptions,
+) -> Result<PrecisionReport, RunError> {
+    let (ukf, srukf) = federated_kinds(scenario)?;
+    let mut scenario = scenario.clone();
+    let k = options.process_noise_scale;
+    if !(k.is_finite() && k > 0.0) {
+        return Err(RunError::InvalidParameter {
+            filter: ukf.label(),
+            error: FilterError::InvalidParameter {
+                name: "process_noise_scale",
+            },
+        });
+    }
+    scenario.filter.imu_model.gyro_arw *= k;
+    scenario.filter.imu_model.accel_vrw *= k;
+    let scenario = &scenario;
+    let reference = PrecisionSetup {
+        precision: Precision::F64,
+        scaling: StateScaling::natural(),
+    };
+    let mut setups = vec![reference];
+    setups.extend(options.setups.iter().filter(|s| **s != reference).copied());
+    let mut runs = Vec::new();
+    let mut references: Vec<Vec<EpochRecord>> = Vec::new();
+    for setup in &setups {
+        for (i, kind) in [ukf, srukf].iter().enumerate() {
+            let mut trace = Vec::new();
+            let (summary, outcome) = run_setup(scenario, kind, seed, &options.run, setup, |r| {
+                trace.push(*r)
+            })?;
+            if *setup == reference {
+                references.push(trace.clone());
+            }
+            runs.push(PrecisionRun {
+                setup: *setup,
+                filter: kind.label(),
+                outcome,
+                summary,
+                from_f64: max_difference(&references[i], &trace),
+            });
+        }
+    }
+    Ok(PrecisionReport {
+        scenario: scenario.name.clone(),
+        seed,
+        process_noise_scale: k,
+        runs,
+        f64_difference: max_difference(&references[0], &references[1]),
+    })
+}
+
+/// The scenario's federated UKF and SR-UKF kinds.
+fn federated_kinds(scenario: &Scenario) -> Result<(FilterKind, FilterKind), RunError> {
+    let find = |ukf: bool| {
+        scenario.filters.iter().copied().find(|k| {
+            matches!(
+                (k, ukf),
+                (FilterKind::FederatedUkf { .. }, true)
+                    | (FilterKind::FederatedSrUkf { .. }, false)
+            )
+        })
+    };
+    match (find(true), find(false)) {
+        (Some(a), Some(b)) => Ok((a, b)),
+        _ => Err(RunError::Incompatible {
+            filter: "federated UKF",
+            reason: "the scenario has no federated UKF and SR-UKF",
+        }),
+    }
+}
+
+/// The largest differences over the common epochs of two traces.
+fn max_difference(a: &[EpochRecord], b: &[EpochRecord]) -> MaxDifference {
+    a.iter()
+        .zip(b)
+        .fold(MaxDifference::default(), |d, (x, y)| MaxDifference {
+            position: d.position.max((x.position - y.position).norm()),
+            velocity: d.velocity.max((x.velocity - y.velocity).norm()),
+            attitude: d.attitude.max((x.attitude - y.attitude).norm()),
+            epochs: d.epochs + 1,
+        })
+}
+
+/// One filter in one set-up: the summary up to the end or the failure.
+fn run_setup<C: FnMut(&EpochRecord)>(
+    scenario: &Scenario,
+    kind: &FilterKind,
+    seed: u64,
+    options: &RunOptions,
+    setup: &PrecisionSetup,
+    on_epoch: C,
+) -> Result<(RunSummary, Outcome), RunError> {
+    let sim = Simulation::new(scenario, seed, options)?;
+    let label = kind.label();
+    let invalid = |error| RunError::InvalidParameter {
+        filter: label,
+        error,
+    };
+    let d = setup.scaling.vector();
+    let s = &scenario.filter;
+    let std = s.p0.std_vector(s.error_model);
+    let p0 = SMatrix::<f64, 15, 15>::from_diagonal(&SVector::from_iterator(
+        std.iter().zip(d.iter()).map(|(v, k)| (v * k).powi(2)),
+    ));
+    let ctx = Context {
+        scenario,
+        sim,
+        options,
+        label,
+        d,
+    };
+    match (setup.precision, *kind) {
+        (Precision::F64, FilterKind::FederatedUkf { alpha, beta, kappa }) => {
+            let local = ukf::<f64>(&p0, alpha, beta, kappa).map_err(invalid)?;
+            ctx.run(local, &p0, on_epoch)
+        }
+        (Precision::F64, FilterKind::FederatedSrUkf { alpha, beta, kappa }) => {
+            let local = srukf::<f64>(&p0, alpha, beta, kappa).map_err(invalid)?;
+            ctx.run(local, &p0, on_epoch)
+        }
+        (Precision::F32, FilterKind::FederatedUkf { alpha, beta, kappa }) => {
+            let local = ukf::<f32>(&p0, alpha, beta, kappa).map_err(invalid)?;
+            ctx.run(local, &p0, on_epoch)
+        }
+        (Precision::F32, FilterKind::FederatedSrUkf { alpha, beta, kappa }) => {
+            let local = srukf::<f32>(&p0, alpha, beta, kappa).map_err(invalid)?;
+            ctx.run(local, &p0, on_epoch)
+        }
+        _ => Err(RunError::Incompatible {
+            filter: label,
+            reason: "not a federated UKF or SR-UKF",
+        }),
+    }
+}
+
+fn ukf<T: Real>(
+    p0: &SMatrix<f64, 15, 15>,
+    alpha: f64,
+    beta: f64,
+    kappa: f64,
+) -> Result<Ukf<T, 15>, FilterError> {
+    let params = MerweParams::new(lit(alpha), lit(beta), lit(kappa));
+    UnscentedForm::new(&p0.map(lit::<T>))
+        .and_then(|f| f.with_params(params))
+        .and_then(|f| Ukf::with_form(SVector::zeros(), f))
+}
+
+fn srukf<T: Real>(
+    p0: &SMatrix<f64, 15, 15>,
+    alpha: f64,
+    beta: f64,
+    kappa: f64,
+) -> Result<SrUkf<T, 15>, FilterError> {
+    let params = MerweParams::new(lit(alpha), lit(beta), lit(kappa));
+    SquareRootForm::new(&p0.map(lit::<T>))
+        .and_then(|f| f.with_params(params))
+        .and_then(|f| SrUkf::with_form(SVector::zeros(), f))
+}
+
+/// What a run needs besides the filter.
+struct Context<'a> {
+    scenario: &'a Scenario,
+    sim: Simulation,
+    options: &'a RunOptions,
+    label: &'static str,
+    /// The state scaling `D` (diagonal).
+    d: SVector<f64, 15>,
+}
+
+impl Context<'_> {
+    /// The federated loop of the experiment runner in type `T`, with the
+    /// scaled models; a failure ends the run and is returned as the
+    /// outcome with the summary so far.
+    fn run<T, F, C>(
+        self,
+        local: Filter<T, 15, F>,
+        p0: &SMatrix<f64, 15, 15>,
+        mut on_epoch: C,
+    ) -> Result<(RunSummary, Outcome), RunError>
+    where
+        T: Real,
+        F: UpdateForm<T, 15, ErrorMeasurement<T, 15, 3>, 3>,
+        C: FnMut(&EpochRecord),
+        (Ekf<T, 15>, Filter<T, 15, F>): for<'m> PredictSet<'m, T, 15, 2, LinearProcess<T, 15>>,
+    {
+        let (sc, label, d) = (self.scenario, self.label, self.d);
+        let s = &sc.filter;
+        if (s.error_model, s.measurement)
+            != (ErrorModelKind::Ins15, MeasurementKind::GnssPositionVelocity)
+        {
+            return Err(RunError::Incompatible {
+                filter: label,
+                reason:
+                    "the federated filter needs the 15-state model and GNSS position and velocity",
+            });
+        }
+        let (Some(_), Some(pos_std), Some(vel_std)) = (&sc.gnss, s.r.position, s.r.velocity) else {
+            return Err(RunError::Incompatible {
+                filter: label,
+                reason: "no GNSS receiver or no GNSS R",
+            });
+        };
+        let inv = d.map(|v| 1.0 / v);
+        let start = self.sim.initial_truth();
+        let axes = self
+            .options
+            .axes
+            .unwrap_or_else(|| PositionAxes::for_scenario(&sc.name));
+        let mut acc = Accumulator::new(axes, self.options.rms_from);
+        let mut digest = Digest::default();
+        let mut end = start.time;
+        let x0 = SVector::<T, 15>::zeros();
+        let p0t = p0.map(lit::<T>);
+        let ekf = Ekf::new(x0, p0t).map_err(|error| RunError::InvalidParameter {
+            filter: label,
+            error,
+        })?;
+        let mut fed = match FederatedFilter::new((ekf, local), Sharing::edop(), x0, p0t) {
+            Ok(f) => f,
+            Err(error) => {
+                let e = RunError::Fusion {
+                    filter: label,
+                    time: start.time,
+                    error,
+                };
+                return Ok((acc.finish(label, end, digest.value()), Outcome::Failed(e)));
+            }
+        };
+        let earth = sc.earth;
+        let system = Ins15::new(s.imu_model);
+        let antenna = GnssAntenna::new(s.lever_arm);
+        let mut ins = Strapdown::new(earth, sc.initial_state(&start));
+        let mut corrections = SensorCorrections::default();
+        let mut forcing = ForcingMean::default();
+        let mut omega_ib = Vector3::zeros();
+        let dd = SMatrix::<f64, 15, 15>::from_diagonal(&d);
+        let di = SMatrix::<f64, 15, 15>::from_diagonal(&inv);
+        for sample in self.sim {
+            digest.add(&sample);
+            let time = sample.truth.time;
+            end = time;
+            let fusion = |error| RunError::Fusion {
+                filter: label,
+                time,
+                error,
+            };
+            let failed = |error| RunError::Filter {
+                filter: label,
+                time,
+                error,
+            };
+            let inc = corrections.imu.compensate(&sample.imu);
+            ins.step(&inc);
+            if inc.dt > 0.0 {
+                omega_ib = inc.dtheta / inc.dt;
+            }
+            forcing.add(&ins, inc.dt);
+            let fix = sample
+                .gnss
+                .map(|g| g.value.with_std(pos_std, vel_std))
+                .filter(|f| f.vel.is_some());
+            let step = (|| {
+                if forcing.dt() > 0.0
+                    && (forcing.dt() >= self.options.covariance_interval - 1e-9 || fix.is_some())
+                {
+                    let model = system.process(&earth, ins.state(), &forcing);
+                    let phi = dd * model.phi() * di;
+                    let q = dd * model.qd() * dd;
+                    let scaled = LinearProcess::new(phi.map(lit::<T>), q.map(lit::<T>));
+                    fed.predict(&scaled, lit(forcing.dt())).map_err(fusion)?;
+                    forcing.clear();
+                }
+                let Some(fix) = fix else {
+                    return Ok(None);
+                };
+                let ctx = InsContext::new(earth, *ins.state(), omega_ib);
+                let pv = antenna.position_velocity::<f64, 15, _>(&system, &ctx, &fix);
+                let h = pv.h() * di;
+                let z = pv.z();
+                let r = pv.noise_covariance().diagonal();
+                let pos = ErrorMeasurement::<T, 15, 3>::new(
+                    z.fixed_rows::<3>(0).into_owned(),
+                    h.fixed_rows::<3>(0).into_owned(),
+                    r.fixed_rows::<3>(0).into_owned(),
+                );
+                let vel = ErrorMeasurement::<T, 15, 3>::new(
+                    z.fixed_rows::<3>(3).into_owned(),
+                    h.fixed_rows::<3>(3).into_owned(),
+                    r.fixed_rows::<3>(3).into_owned(),
+                );
+                let r0 = fed.locals_mut().0.update(&pos, &pos.z()).map_err(failed)?;
+                fed.record(0, &r0).map_err(fusion)?;
+                let r1 = fed.locals_mut().1.update(&vel, &vel.z()).map_err(failed)?;
+                fed.record(1, &r1).map_err(fusion)?;
+                fed.fuse().map_err(fusion)?;
+                let dx = fed.state().map(to_f64).component_mul(&inv);
+                if dx.iter().any(|v| !v.is_finite()) {
+                    return Err(failed(FilterError::NonFinite {
+                        what: kestrel_core::Quantity::UpdatedEstimate,
+                        index: dx.iter().position(|v| !v.is_finite()).unwrap_or(0),
+                    }));
+                }
+                feed_back::<f64, 15, Ins15>(&dx, &earth, ins.state_mut(), &mut corrections);
+                fed.locals_mut().0.set_state(x0).map_err(failed)?;
+                fed.locals_mut().1.set_state(x0).map_err(failed)?;
+                Ok(Some(Adaptation {
+                    nis: to_f64(r0.nis + r1.nis),
+                    rejected: r0.rejected && r1.rejected,
+                    noise_trace: to_f64(r0.noise.trace() + r1.noise.trace()),
+                    ..Adaptation::default()
+                }))
+            })();
+            let adaptation = match step {
+                Ok(Some(a)) => a,
+                Ok(None) => continue,
+                Err(e) => return Ok((acc.finish(label, end, digest.value()), Outcome::Failed(e))),
+            };
+            let record =
+                match EpochRecord::measure(&earth, ins.state(), &sample.truth, adaptation, label) {
+                    Ok(r) => r,
+                    Err(e) => {
+                        return Ok((acc.finish(label, end, digest.value()), Outcome::Failed(e)))
+                    }
+                };
+            acc.add(&record);
+            on_epoch(&record);
+        }
+        Ok((acc.finish(label, end, digest.value()), Outcome::Completed))
+    }
+}
+
+fn to_f64<T: Real>(v: T) -> f64 {
+    nalgebra::try_convert(v).unwrap_or(f64::NAN)
+}
