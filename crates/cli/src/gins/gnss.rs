@@ -1,0 +1,228 @@
+//! GNSS fixes: `sow lat lon h σN σE σD [vN vE vD σvN σvE σvD]`.
+
+use std::fs::File;
+use std::io::{BufRead, BufReader, BufWriter, Write};
+use std::path::Path;
+
+use kestrel::nav::measurement::GnssFix;
+use kestrel::nav::nalgebra::Vector3;
+use kestrel::nav::Geodetic;
+
+use super::angle::{degrees_exact, degrees_to_radians};
+use super::line::{open, Lines};
+use crate::{CliError, InputError};
+
+const NAMES: &[&str] = &[
+    "time, s of week",
+    "latitude, deg",
+    "longitude, deg",
+    "height, m",
+    "σ north, m",
+    "σ east, m",
+    "σ down, m",
+    "velocity north, m/s",
+    "velocity east, m/s",
+    "velocity down, m/s",
+    "σ velocity north, m/s",
+    "σ velocity east, m/s",
+    "σ velocity down, m/s",
+];
+const LAYOUT: &str = "time, lat, lon, h, σ NED, optional velocity NED and its σ";
+const STD_COLUMNS: [usize; 6] = [4, 5, 6, 10, 11, 12];
+
+/// Streams [`GnssFix`]es from a GNSS file; times must increase, gaps are
+/// allowed. Every line must have the column count of the first data line.
+///
+/// ```
+/// use kestrel_cli::gins::GnssReader;
+/// let text = "1 30 114 20 1 1 2\n2 30 114 20 1 1 2\n";
+/// let fixes: Vec<_> = GnssReader::new(text.as_bytes(), "gnss.txt".as_ref()).collect();
+/// assert_eq!(fixes[1].as_ref().unwrap().time, 2.0);
+/// assert!(fixes[0].as_ref().unwrap().vel.is_none());
+/// let bad = "1 30 114 20 1 1 0\n";
+/// let e = GnssReader::new(bad.as_bytes(), "gnss.txt".as_ref()).next().unwrap().unwrap_err();
+/// assert!(e.to_string().starts_with("gnss.txt:1:7: expected a positive"));
+/// ```
+#[derive(Debug)]
+pub struct GnssReader<R> {
+    lines: Lines<R>,
+    columns: Option<usize>,
+    previous: Option<(f64, usize)>,
+    failed: bool,
+}
+
+impl GnssReader<BufReader<File>> {
+    /// Opens the GNSS file at `path`.
+    ///
+    /// # Errors
+    /// [`InputError`] naming the file if it cannot be opened.
+    pub fn open(path: &Path) -> Result<Self, InputError> {
+        Ok(Self::new(open(path)?, path))
+    }
+}
+
+impl<R: BufRead> GnssReader<R> {
+    /// Reads GNSS lines from `reader`, calling it `path` in errors.
+    pub fn new(reader: R, path: &Path) -> Self {
+        Self {
+            lines: Lines::new(reader, path, NAMES, &[7, 13], LAYOUT),
+            columns: None,
+            previous: None,
+            failed: false,
+        }
+    }
+
+    fn record(&mut self) -> Option<Result<GnssFix, InputError>> {
+        let f = match self.lines.next_fields()? {
+            Ok(f) => f,
+            Err(e) => return Some(Err(e)),
+        };
+        let path = self.lines.path();
+        let at = |column: usize, msg: String| Some(Err(InputError::at(path, f.line, column, msg)));
+        match self.columns {
+            None => self.columns = Some(f.count),
+            Some(c) if c != f.count => {
+                return at(
+                    c.min(f.count) + 1,
+                    format!(
+                        "expected {c} columns like the first data line, found {}",
+                        f.count
+                    ),
+                )
+            }
+            Some(_) => {}
+        }
+        let v = &f.values;
+        if let Some((t0, l0)) = self.previous {
+            if v[0] <= t0 {
+                return at(
+                    1,
+                    format!(
+                        "time does not increase: {} s after {t0} s at line {l0} \
+                         (expected increasing seconds of week)",
+                        v[0]
+                    ),
+                );
+            }
+        }
+        if v[1].abs() > 90.0 {
+            return at(
+                2,
+                format!("expected a latitude in [-90, 90] deg, found {}", v[1]),
+            );
+        }
+        for &c in STD_COLUMNS.iter().filter(|&&c| c < f.count) {
+            if v[c] <= 0.0 {
+                return at(
+                    c + 1,
+                    format!(
+                        "expected a positive standard deviation ({}), found {}",
+                        NAMES[c], v[c]
+                    ),
+                );
+            }
+        }
+        self.previous = Some((v[0], f.line));
+        let pos = Geodetic::new(degrees_to_radians(v[1]), degrees_to_radians(v[2]), v[3]);
+        let pos_std = Vector3::new(v[4], v[5], v[6]);
+        let fix = if f.count == 13 {
+            GnssFix::new(v[0], pos, Vector3::new(v[7], v[8], v[9]))
+                .with_std(pos_std, Vector3::new(v[10], v[11], v[12]))
+        } else {
+            let p = GnssFix::position_only(v[0], pos);
+            p.with_std(pos_std, p.vel_std)
+        };
+        Some(Ok(fix))
+    }
+}
+
+impl<R: BufRead> Iterator for GnssReader<R> {
+    type Item = Result<GnssFix, InputError>;
+
+    /// The next fix; after an error the reader ends.
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.failed {
+            return None;
+        }
+        let r = self.record();
+        self.failed = matches!(r, Some(Err(_)));
+        r
+    }
+}
+
+/// Writes GNSS lines: 13 columns for fixes with velocity, 7 without.
+///
+/// ```
+/// use kestrel_cli::gins::{GnssReader, GnssWriter};
+/// use kestrel::nav::{measurement::GnssFix, nalgebra::Vector3, Geodetic};
+/// let fix = GnssFix::new(1.5, Geodetic::from_degrees(30.5, 114.2, 21.3), Vector3::new(1.0, 2.0, 0.1))
+///     .with_std(Vector3::new(0.5, 0.5, 1.0), Vector3::repeat(0.05));
+/// let mut w = GnssWriter::new(Vec::new());
+/// w.write(&fix).unwrap();
+/// let bytes = w.into_inner().unwrap();
+/// let back = GnssReader::new(&bytes[..], "g".as_ref()).next().unwrap().unwrap();
+/// assert_eq!(back, fix);
+/// ```
+#[derive(Debug)]
+pub struct GnssWriter<W: Write> {
+    out: W,
+}
+
+impl GnssWriter<BufWriter<File>> {
+    /// Creates the GNSS file at `path`.
+    ///
+    /// # Errors
+    /// [`CliError::Io`] if it cannot be created.
+    pub fn create(path: &Path) -> Result<Self, CliError> {
+        let f = File::create(path).map_err(|e| CliError::io(path, e))?;
+        Ok(Self::new(BufWriter::new(f)))
+    }
+}
+
+impl<W: Write> GnssWriter<W> {
+    /// Writes GNSS lines to `out`.
+    pub fn new(out: W) -> Self {
+        Self { out }
+    }
+
+    /// Writes a `#` comment line.
+    ///
+    /// # Errors
+    /// The writer's I/O error.
+    pub fn comment(&mut self, text: &str) -> std::io::Result<()> {
+        writeln!(self.out, "# {text}")
+    }
+
+    /// Writes one fix with its σ.
+    ///
+    /// # Errors
+    /// The writer's I/O error.
+    pub fn write(&mut self, fix: &GnssFix) -> std::io::Result<()> {
+        let s = &fix.pos_std;
+        write!(
+            self.out,
+            "{} {} {} {} {} {} {}",
+            fix.time,
+            degrees_exact(fix.pos.lat),
+            degrees_exact(fix.pos.lon),
+            fix.pos.h,
+            s.x,
+            s.y,
+            s.z
+        )?;
+        if let Some(v) = &fix.vel {
+            let s = &fix.vel_std;
+            write!(self.out, " {} {} {} {} {} {}", v.x, v.y, v.z, s.x, s.y, s.z)?;
+        }
+        writeln!(self.out)
+    }
+
+    /// Flushes and returns the underlying writer.
+    ///
+    /// # Errors
+    /// The flush error.
+    pub fn into_inner(mut self) -> std::io::Result<W> {
+        self.out.flush()?;
+        Ok(self.out)
+    }
+}

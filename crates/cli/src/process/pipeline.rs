@@ -1,0 +1,142 @@
+//! The processing loop: IMU samples in file order, the aiding due at each,
+//! the outputs — one monomorphised loop per filter type.
+
+use std::fs::File;
+use std::io::BufReader;
+use std::iter::Peekable;
+
+use kestrel::adapter::PriorAdapter;
+use kestrel::form::{Form, PredictForm};
+use kestrel::nav::engine::{ErrorSystem, LooselyCoupled};
+use kestrel::nav::experiment::Adaptation;
+use kestrel::nav::measurement::{GnssFix, OdometerReading};
+use kestrel::FilterError;
+
+use super::outage::Outage;
+use super::schedule::Schedule;
+use super::sink::Sink;
+use crate::gins::{GnssReader, ImuReader, ImuRecord};
+use crate::{CliError, InputError};
+
+/// The inputs of a run and its outputs.
+pub(crate) struct Job {
+    pub imu: ImuReader<BufReader<File>>,
+    pub gnss: Option<Peekable<GnssReader<BufReader<File>>>>,
+    /// Odometer update rate (Hz) when the 8th IMU column is used.
+    pub odometer_rate: Option<f64>,
+    pub outages: Vec<Outage>,
+    pub start: f64,
+    pub sink: Sink,
+    /// GNSS fixes used, and skipped in outages.
+    pub fixes_used: usize,
+    pub fixes_in_outage: usize,
+}
+
+impl Job {
+    /// The first IMU record after the start time.
+    fn first_imu(&mut self) -> Result<ImuRecord, CliError> {
+        for r in self.imu.by_ref() {
+            let r = r?;
+            if r.time > self.start {
+                return Ok(r);
+            }
+        }
+        Err(CliError::Failed(format!(
+            "no IMU sample after the initial time {} s of week",
+            self.start
+        )))
+    }
+
+    /// The next GNSS fix to use at the sample at `t` (the next sample at
+    /// `next`): fixes at `t ≤ time < next` belong to this sample (the
+    /// engine extrapolates to them); fixes before the start are dropped.
+    fn gnss_due(&mut self, t: f64, next: Option<f64>) -> Result<Option<GnssFix>, InputError> {
+        let Some(gnss) = self.gnss.as_mut() else {
+            return Ok(None);
+        };
+        loop {
+            let time = match gnss.peek() {
+                None => return Ok(None),
+                Some(Err(_)) => {
+                    return match gnss.next() {
+                        Some(Err(e)) => Err(e),
+                        _ => Ok(None),
+                    }
+                }
+                Some(Ok(f)) => f.time,
+            };
+            if time > self.start && next.map_or(time > t, |n| time >= n) {
+                return Ok(None);
+            }
+            let Some(Ok(fix)) = gnss.next() else {
+                return Ok(None);
+            };
+            if fix.time <= self.start {
+                continue;
+            }
+            if self.outages.iter().any(|o| o.contains(fix.time)) {
+                self.fixes_in_outage += 1;
+                continue;
+            }
+            self.fixes_used += 1;
+            return Ok(Some(fix));
+        }
+    }
+}
+
+/// Runs `engine` over the job's data; `gnss` and `odometer` update it.
+pub(crate) fn drive<const N: usize, S, F, A>(
+    job: &mut Job,
+    engine: &mut LooselyCoupled<f64, N, S, F, A>,
+    mut gnss: impl FnMut(
+        &mut LooselyCoupled<f64, N, S, F, A>,
+        &GnssFix,
+    ) -> Result<Adaptation, FilterError>,
+    mut odometer: impl FnMut(
+        &mut LooselyCoupled<f64, N, S, F, A>,
+        &OdometerReading,
+    ) -> Result<Adaptation, FilterError>,
+) -> Result<(), CliError>
+where
+    S: ErrorSystem<N>,
+    F: Form<f64, N> + PredictForm<f64, N, S::Process>,
+    A: PriorAdapter<f64>,
+{
+    let label = job.sink.label;
+    let mut schedule = Schedule::new();
+    let mut previous = job.start;
+    let mut current = Some(job.first_imu()?);
+    if let (Some(_), Some(r)) = (job.odometer_rate, &current) {
+        if r.odometer.is_none() {
+            return Err(InputError::at(
+                job.imu.path(),
+                r.line,
+                8,
+                "expected an 8th column (odometer speed, m/s): --odo is given",
+            )
+            .into());
+        }
+    }
+    while let Some(sample) = current {
+        let following = job.imu.next().transpose()?;
+        let t = sample.time;
+        let diverged = |error: FilterError| {
+            CliError::Failed(format!("{label} diverged at {t} s of week: {error}"))
+        };
+        engine.imu(&sample.increment(previous)).map_err(diverged)?;
+        previous = t;
+        let mut update = None;
+        while let Some(fix) = job.gnss_due(t, following.as_ref().map(|f| f.time))? {
+            update = Some(gnss(engine, &fix).map_err(diverged)?);
+        }
+        if let (Some(rate), Some(speed)) = (job.odometer_rate, sample.odometer) {
+            if schedule.due(t, rate) {
+                let reading = OdometerReading::new(t, speed);
+                update = Some(odometer(engine, &reading).map_err(diverged)?);
+            }
+        }
+        job.sink.sample(engine.solution(), update)?;
+        current = following;
+    }
+    Ok(())
+}

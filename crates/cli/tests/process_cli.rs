@@ -1,0 +1,408 @@
+//! `kestrel process` and `kestrel simulate`: configuration errors, the
+//! round trip simulate → open formats → process against the in-memory run,
+//! outages, divergence, and the binary end to end.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use kestrel::nav::experiment::{run, RunOptions};
+use kestrel::nav::scenario::{by_name, FilterKind};
+use kestrel_cli::process::{process, ProcessArgs};
+use kestrel_cli::simulate::{process_config, simulate, SimulateArgs};
+
+/// A fresh directory in the temporary directory, unique to this process
+/// and call.
+fn tmp_dir(name: &str) -> PathBuf {
+    static N: AtomicUsize = AtomicUsize::new(0);
+    let k = N.fetch_add(1, Ordering::Relaxed);
+    let p = std::env::temp_dir().join(format!("kestrel-proc-{}-{k}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&p);
+    std::fs::create_dir_all(&p).unwrap();
+    p
+}
+
+fn sim(name: &str, seed: u64, duration: f64) -> PathBuf {
+    let dir = tmp_dir(&format!("sim{name}"));
+    simulate(&SimulateArgs {
+        scenario: name.into(),
+        seed: Some(seed),
+        duration: Some(duration),
+        imu_rate: None,
+        out: dir.clone(),
+    })
+    .unwrap();
+    dir
+}
+
+fn args(dir: &Path, odo: bool) -> ProcessArgs {
+    ProcessArgs {
+        imu: dir.join("imu.txt"),
+        gnss: Some(dir.join("gnss.txt")),
+        odo,
+        truth: Some(dir.join("truth.nav")),
+        config: dir.join("process.toml"),
+        out: dir.join("result"),
+        outages: Vec::new(),
+        no_plots: true,
+    }
+}
+
+/// Runs the standard filter on `name` both ways: simulated data written
+/// in the open formats and processed from the files, and the in-memory
+/// experiment runner with the same seed and duration.
+fn round_trip(name: &str, seed: u64, duration: f64, odo: bool) {
+    round_trip_with(name, &FilterKind::Standard, seed, duration, odo);
+}
+
+/// As [`round_trip`] with the filter `kind` (its configuration written by
+/// the same function `simulate` uses).
+fn round_trip_with(name: &str, kind: &FilterKind, seed: u64, duration: f64, odo: bool) {
+    let dir = sim(name, seed, duration);
+    let sc = by_name(name).unwrap();
+    let truth = sc.trajectory().unwrap().initial_state();
+    let config = process_config(&sc, &sc.initial_state(&truth), kind);
+    std::fs::write(dir.join("process.toml"), config).unwrap();
+    let report = process(&args(&dir, odo)).unwrap();
+    let opts = RunOptions::default().with_duration(duration);
+    let mem = run(&sc, kind, seed, &opts).unwrap().summary;
+    let e = report.errors.unwrap();
+    assert_eq!(report.filter, kind.label());
+    assert_eq!(report.rejected, mem.rejected, "{name}: same rejections");
+    assert_eq!(report.updates, mem.epochs, "{name}: same aiding epochs");
+    assert_eq!(
+        e.epochs, mem.rms_epochs,
+        "{name}: all compared with the truth"
+    );
+    assert_eq!(e.axes, mem.axes);
+    // What differs between the two runs: latitude and longitude written in
+    // degrees come back within one unit in the last place (1e-16 rad, under
+    // a nanometre; about one double in ten has no exact degree
+    // representation), and the initial attitude and the truth attitude pass
+    // through Euler angles in degrees (a few 1e-16 rad). The runs amplify
+    // these 1e-16 relative differences to at most 2.2e-9 relative here (the
+    // adaptive filters most: their R estimates and fades follow the data);
+    // a sample, a fix, an R or a parameter out of step changes the RMS by
+    // 1e-4 relative or more. 1e-8 relative separates the two.
+    let close = |a: f64, b: f64, what: &str| {
+        assert!(
+            (a - b).abs() <= 1e-8 * b.abs(),
+            "{name} {} {what}: file {a} vs memory {b}",
+            kind.label()
+        );
+    };
+    for i in 0..3 {
+        close(e.rms_position[i], mem.rms_position[i], "position RMS");
+        close(e.rms_velocity[i], mem.rms_velocity[i], "velocity RMS");
+        close(e.rms_attitude[i], mem.rms_attitude[i], "attitude RMS");
+    }
+    close(e.max_position_3d, mem.max_position, "max position");
+    assert!(
+        mem.rms_position.norm() > 0.01,
+        "{name}: a real run, not a trivial one"
+    );
+}
+
+#[test]
+fn gnss_scenario_002_through_the_files_equals_the_in_memory_run() {
+    round_trip("002", 5, 60.0, false);
+}
+
+#[test]
+fn scenario_000_on_the_krasovsky_ellipsoid_equals_the_in_memory_run() {
+    round_trip("000", 3, 30.0, false);
+}
+
+#[test]
+fn odometer_scenario_003_through_the_eighth_column_equals_the_in_memory_run() {
+    round_trip("003", 2, 30.0, true);
+}
+
+#[test]
+fn the_adaptive_and_robust_filters_through_the_files_equal_the_in_memory_run() {
+    // 002's ICT-EREKF, 000's Sage-Husa + fading and improved adaptive
+    // filters, 003's max-threshold and fuzzy odometer processing.
+    let s002 = by_name("002").unwrap();
+    round_trip_with("002", &s002.filters[1], 4, 60.0, false);
+    let s000 = by_name("000").unwrap();
+    round_trip_with("000", &s000.filters[1], 6, 20.0, false);
+    round_trip_with("000", &s000.filters[2], 6, 20.0, false);
+    let s003 = by_name("003").unwrap();
+    round_trip_with("003", &s003.filters[1], 8, 20.0, true);
+    round_trip_with("003", &s003.filters[2], 8, 20.0, true);
+}
+
+/// The error `process` gives for the configuration text `text` (the other
+/// inputs valid).
+fn config_error(dir: &Path, text: &str) -> (PathBuf, String) {
+    let path = dir.join(format!("bad-{}.toml", text.len()));
+    std::fs::write(&path, text).unwrap();
+    let mut a = args(dir, false);
+    a.config = path.clone();
+    (path, process(&a).unwrap_err().to_string())
+}
+
+#[test]
+fn configuration_errors_name_the_line_column_or_key() {
+    let dir = sim("002", 1, 3.0);
+    let good = std::fs::read_to_string(dir.join("process.toml")).unwrap();
+    let line_of = |needle: &str| good.lines().position(|l| l.starts_with(needle)).unwrap() + 1;
+
+    // Unknown key: line and column of the key.
+    let text = good.replace("gyro_arw =", "gyro_arww =");
+    let (p, e) = config_error(&dir, &text);
+    let prefix = format!(
+        "{}:{}:1: unknown field `gyro_arww`, expected one of",
+        p.display(),
+        line_of("gyro_arw")
+    );
+    assert!(e.starts_with(&prefix), "{e}");
+
+    // Wrong type: line and column of the value.
+    let text = good.replace(
+        "covariance_interval = 0.1",
+        "covariance_interval = \"fast\"",
+    );
+    let (p, e) = config_error(&dir, &text);
+    let prefix = format!(
+        "{}:{}:23: invalid type: string \"fast\", expected f64",
+        p.display(),
+        line_of("covariance_interval")
+    );
+    assert!(e.starts_with(&prefix), "{e}");
+
+    // Missing table.
+    let start = good.find("[initial]").unwrap();
+    let end = good.find("[imu]").unwrap();
+    let text = format!("{}{}", &good[..start], &good[end..]);
+    let (p, e) = config_error(&dir, &text);
+    assert!(
+        e.starts_with(&format!("{}:", p.display())) && e.contains("missing field `initial`"),
+        "{e}"
+    );
+
+    // Out of range: the key.
+    let cases = [
+        ("gyro_arw = ", "gyro_arw = -0.5\n#", "imu.gyro_arw", "expected a finite value ≥ 0, found -0.5"),
+        ("kind = ", "kind = \"ict-erekf\"\nsignificance = 1.5\n#", "filter.significance", "expected a value in (0, 1), found 1.5"),
+        ("kind = ", "kind = \"ekf\"\nrho = 0.5\n#", "filter.rho", "not a parameter of kind `ekf`"),
+        ("kind = ", "kind = \"kalman\"\n#", "filter.kind", "expected `ekf`, `ict-erekf`, `sage-husa-fading`, `improved-adaptive`, `fading`, `max-threshold` or `fuzzy-adaptive`, found `kalman`"),
+        ("position = [", "position = [91.0, 0.0, 0.0]\n#", "initial.position[0]", "expected a latitude in [-90, 90] deg, found 91"),
+        ("position_std = ", "position_std = [1.0, 0.0, 1.0]\n#", "gnss.position_std[1]", "expected a finite value > 0, found 0"),
+        ("gyro_markov_tau = ", "gyro_markov_tau = -5.0\n#", "imu.gyro_markov_tau", "expected a time > 0 s (or inf), found -5"),
+    ];
+    for (find, replace, key, msg) in cases {
+        let text = good.replacen(find, replace, 1);
+        let (p, e) = config_error(&dir, &text);
+        assert_eq!(e, format!("{}: key `{key}`: {msg}", p.display()));
+    }
+
+    // --odo needs the odometer table.
+    let mut a = args(&dir, true);
+    a.config = dir.join("process.toml");
+    assert_eq!(
+        process(&a).unwrap_err().to_string(),
+        format!(
+            "{}: key `odometer`: --odo needs an [odometer] table",
+            a.config.display()
+        )
+    );
+    // A missing configuration file.
+    a.config = dir.join("absent.toml");
+    let e = process(&a).unwrap_err().to_string();
+    assert!(
+        e.starts_with(&format!("{}: cannot read the file: ", a.config.display())),
+        "{e}"
+    );
+}
+
+#[test]
+fn outage_windows_drop_the_fixes_inside_them() {
+    let dir = sim("002", 7, 60.0);
+    let full = process(&args(&dir, false)).unwrap();
+    let mut a = args(&dir, false);
+    a.outages = vec!["20:40".parse().unwrap(), "50.5:52.5".parse().unwrap()];
+    a.out = dir.join("coast");
+    let coast = process(&a).unwrap();
+    // 1 Hz fixes at 1 … 60 s: 20 … 40 (21) and 51, 52 (2) are dropped.
+    assert_eq!(full.fixes_used, 60);
+    assert_eq!((coast.fixes_used, coast.fixes_in_outage), (37, 23));
+    assert_eq!(coast.updates, 37);
+    assert_eq!(coast.errors.unwrap().epochs, 37);
+    // The solutions agree bit for bit up to the first dropped fix (20 s)
+    // and part there.
+    let read = |d: &str| std::fs::read_to_string(dir.join(d).join("result.nav")).unwrap();
+    let (a, b) = (read("result"), read("coast"));
+    let time = |l: &str| l.split(' ').nth(1).unwrap().parse::<f64>().unwrap();
+    let pairs: Vec<(&str, &str)> = a
+        .lines()
+        .zip(b.lines())
+        .filter(|(l, _)| !l.starts_with('#'))
+        .collect();
+    assert_eq!(pairs.len(), 12_000);
+    for (x, y) in &pairs {
+        if time(x) < 20.0 {
+            assert_eq!(x, y);
+        }
+    }
+    let at_20 = pairs.iter().find(|(x, _)| time(x) == 20.0).unwrap();
+    assert_ne!(at_20.0, at_20.1);
+}
+
+#[test]
+fn a_divergence_is_reported_with_its_time() {
+    let dir = sim("002", 1, 3.0);
+    let imu = std::fs::read_to_string(dir.join("imu.txt")).unwrap();
+    // An absurd velocity increment at 0.505 s makes the solution
+    // non-finite (between two covariance propagations).
+    let mut lines: Vec<String> = imu.lines().map(String::from).collect();
+    let k = lines.iter().position(|l| l.starts_with("0.505 ")).unwrap();
+    let mut f: Vec<String> = lines[k].split(' ').map(String::from).collect();
+    f[4] = "1e308".into();
+    f[5] = "1e308".into();
+    lines[k] = f.join(" ");
+    std::fs::write(dir.join("imu.txt"), lines.join("\n")).unwrap();
+    let e = process(&args(&dir, false)).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "KF diverged at 0.505 s of week: non-finite navigation solution"
+    );
+}
+
+fn kestrel(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_kestrel"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn the_binary_simulates_processes_and_refuses_bad_input() {
+    let dir = tmp_dir("bin");
+    let d = |f: &str| dir.join(f).display().to_string();
+    let out = kestrel(&[
+        "simulate",
+        "002",
+        "--seed",
+        "9",
+        "--duration",
+        "20",
+        "--out",
+        &d(""),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.starts_with("4000 IMU samples, 20 GNSS fixes\n"),
+        "{stdout}"
+    );
+
+    let out = kestrel(&[
+        "process",
+        "--imu",
+        &d("imu.txt"),
+        "--gnss",
+        &d("gnss.txt"),
+        "--truth",
+        &d("truth.nav"),
+        "--config",
+        &d("process.toml"),
+        "--out",
+        &d("result"),
+        "--outage",
+        "5:8",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.starts_with(
+        "KF: 4000 IMU samples to 20 s of week, 16 GNSS fixes used (4 in outages), 16 updates (0 rejected)\n\
+         errors against the truth at 16 aiding epochs (RMS / max |error|):\n  position  east: "
+    ), "{stdout}");
+    let nav = std::fs::read_to_string(dir.join("result/result.nav")).unwrap();
+    assert_eq!(nav.lines().filter(|l| !l.starts_with('#')).count(), 4000);
+    let csv = std::fs::read_to_string(dir.join("result/result.csv")).unwrap();
+    assert_eq!(
+        csv.lines().next(),
+        Some(kestrel_cli::process::RESULT_CSV_HEADER)
+    );
+    assert_eq!(csv.lines().count(), 4001);
+    for f in [
+        "errors.csv",
+        "error_summary.csv",
+        "position.png",
+        "velocity.svg",
+    ] {
+        assert!(dir.join("result").join(f).is_file(), "{f}");
+    }
+
+    // A non-numeric field: non-zero exit, one line naming file:line:column.
+    let imu = std::fs::read_to_string(dir.join("imu.txt")).unwrap();
+    std::fs::write(dir.join("bad.txt"), imu.replacen("0.015 ", "0.0l5 ", 1)).unwrap();
+    let out = kestrel(&[
+        "process",
+        "--imu",
+        &d("bad.txt"),
+        "--gnss",
+        &d("gnss.txt"),
+        "--config",
+        &d("process.toml"),
+        "--out",
+        &d("bad"),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let line = imu.lines().position(|l| l.starts_with("0.015 ")).unwrap() + 1;
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        format!(
+            "kestrel: {}:{line}:1: expected a number (time, s of week), found `0.0l5`\n",
+            d("bad.txt")
+        )
+    );
+
+    // A missing file.
+    let out = kestrel(&[
+        "process",
+        "--imu",
+        &d("absent.txt"),
+        "--config",
+        &d("process.toml"),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.starts_with(&format!(
+            "kestrel: {}: cannot open the file: ",
+            d("absent.txt")
+        )),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1);
+}
+
+#[test]
+fn the_shipped_example_configuration_is_valid() {
+    use kestrel_cli::process::config::{load, GnssNoise};
+    use kestrel_cli::process::units::{deg_per_h, deg_per_sqrt_h, m_s_per_sqrt_h, ug};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/process-example.toml");
+    let s = load(&path).unwrap();
+    assert_eq!((s.week, s.start.time), (2300, 356_400.0));
+    assert_eq!(s.start.pos.lat, 30.5278f64.to_radians());
+    assert_eq!(s.kind, FilterKind::IctErekf { significance: 0.05 });
+    assert_eq!(s.imu.gyro_arw, deg_per_sqrt_h(0.2));
+    assert_eq!(s.imu.accel_vrw, m_s_per_sqrt_h(0.1));
+    assert_eq!(s.imu.gyro_bias, deg_per_h(10.0));
+    assert_eq!(s.imu.accel_bias, ug(500.0));
+    assert_eq!(s.imu.gyro_markov_tau, f64::INFINITY);
+    assert_eq!(s.lever_arm.z, -0.8);
+    assert!(matches!(s.gnss_noise, GnssNoise::Fixed { .. }));
+    assert!(s.odometer.is_none());
+    assert_eq!(s.output_interval, 0.0);
+}
