@@ -1,18 +1,82 @@
 //! Error and adapter plots (PNG and SVG) drawn with plotters and a shipped font.
+//!
+//! [`error_figures`] writes four figures into a directory, each as
+//! `<name>.png` (1200 px wide) and `<name>.svg`, names as in [`FIGURES`]:
+//!
+//! | file | panels |
+//! |---|---|
+//! | `position.png`, `position.svg` | position error per axis, m, in the run's [`PositionAxes`] |
+//! | `velocity.png`, `velocity.svg` | velocity error north, east, down, m/s |
+//! | `attitude.png`, `attitude.svg` | attitude error φ north, east, down, arcmin (degrees when some error exceeds 2°) |
+//! | `adaptation.png`, `adaptation.svg` | one panel per adapter quantity some filter changed (fading factor λ, R inflation, innovation compression, odometer gain α₁, trace of R), then the NIS of every filter on a log axis |
+//!
+//! One line per filter in the order given (baseline first), one legend
+//! under the title. Lines break where the time step exceeds five times the
+//! median step (an outage). Long series are thinned to two points per pixel column
+//! keeping each bucket's extremes, so spikes survive. A filter whose error
+//! is over ten times the next-worst filter's would flatten the others: it
+//! is clipped to the panel's edge and named with its peak in the panel
+//! caption. Non-finite values are skipped.
+
+mod chi2;
+mod figure;
+mod font;
+mod legend;
+mod palette;
+mod panels;
+mod range;
+mod thin;
+mod ticks;
 
 use std::path::{Path, PathBuf};
 
 use kestrel::nav::experiment::{EpochRecord, PositionAxes};
 
+pub use chi2::chi2_quantile;
+pub use thin::{split_at_gaps, thin};
+
 use crate::CliError;
+use figure::{Figure, Reference};
+
+/// The figures [`error_figures`] writes, in order; each is written as
+/// `<name>.png` and `<name>.svg`.
+///
+/// ```
+/// assert_eq!(kestrel_cli::plot::FIGURES[0], "position");
+/// ```
+pub const FIGURES: [&str; 4] = ["position", "velocity", "attitude", "adaptation"];
 
 /// One filter's records to plot, with its label.
 #[derive(Clone, Copy, Debug)]
 pub struct FilterTrace<'a> {
-    /// The filter's name, used in legends and file names.
+    /// The filter's name, shown in the legend.
     pub label: &'a str,
     /// Its aiding epochs in time order.
     pub records: &'a [EpochRecord],
+}
+
+/// What [`error_figures_with`] can be told besides the traces.
+///
+/// ```
+/// let o = kestrel_cli::plot::FigureOptions::default();
+/// assert_eq!((o.nis_dof, o.nis_probability), (None, 0.99));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FigureOptions {
+    /// Rows of the measurement, if all updates have the same: the NIS panel
+    /// then shows the χ² bound with this many degrees of freedom.
+    pub nis_dof: Option<usize>,
+    /// Probability of the χ² bound.
+    pub nis_probability: f64,
+}
+
+impl Default for FigureOptions {
+    fn default() -> Self {
+        Self {
+            nis_dof: None,
+            nis_probability: 0.99,
+        }
+    }
 }
 
 /// Draws the position, velocity and attitude error figures and the adapter
@@ -21,12 +85,81 @@ pub struct FilterTrace<'a> {
 ///
 /// # Errors
 /// [`CliError`] if a file cannot be written or drawing fails.
+///
+/// ```
+/// use kestrel_cli::plot::{error_figures, FilterTrace};
+/// use kestrel::nav::experiment::{Adaptation, EpochRecord, PositionAxes};
+/// use kestrel::nav::nalgebra::Vector3;
+/// let records: Vec<EpochRecord> = (0..50)
+///     .map(|i| EpochRecord { time: i as f64, position: Vector3::new(1.0, -1.0, 0.5),
+///         velocity: Vector3::zeros(), attitude: Vector3::zeros(),
+///         adaptation: Adaptation { nis: 2.0, ..Adaptation::default() } })
+///     .collect();
+/// let dir = std::env::temp_dir().join("kestrel-doc-figures");
+/// let traces = [FilterTrace { label: "KF", records: &records }];
+/// let files = error_figures(&dir, "example", PositionAxes::NorthEastDown, &traces).unwrap();
+/// assert_eq!(files.len(), 8);
+/// assert!(files[0].ends_with("position.png"));
+/// ```
 pub fn error_figures(
     dir: &Path,
     title: &str,
     axes: PositionAxes,
     traces: &[FilterTrace<'_>],
 ) -> Result<Vec<PathBuf>, CliError> {
-    let _ = (dir, title, axes, traces);
-    Ok(Vec::new())
+    error_figures_with(dir, title, axes, traces, &FigureOptions::default())
+}
+
+/// As [`error_figures`], with `options`.
+///
+/// # Errors
+/// As [`error_figures`].
+///
+/// ```
+/// use kestrel_cli::plot::{error_figures_with, FigureOptions};
+/// use kestrel::nav::experiment::PositionAxes;
+/// let dir = std::env::temp_dir().join("kestrel-doc-empty-figures");
+/// let options = FigureOptions { nis_dof: Some(3), ..FigureOptions::default() };
+/// let files = error_figures_with(&dir, "nothing yet", PositionAxes::EastNorthUp, &[], &options);
+/// assert_eq!(files.unwrap().len(), 8);
+/// ```
+pub fn error_figures_with(
+    dir: &Path,
+    title: &str,
+    axes: PositionAxes,
+    traces: &[FilterTrace<'_>],
+    options: &FigureOptions,
+) -> Result<Vec<PathBuf>, CliError> {
+    std::fs::create_dir_all(dir).map_err(|e| CliError::io(dir, e))?;
+    let filters: Vec<String> = traces.iter().map(|t| t.label.to_string()).collect();
+    let nis_bound = options.nis_dof.and_then(|dof| {
+        let value = chi2_quantile(dof, options.nis_probability)?;
+        Some(Reference {
+            value,
+            label: format!(
+                "χ² bound, {dof} dof, p = {} ({value:.2})",
+                options.nis_probability
+            ),
+        })
+    });
+    let figures = [
+        ("position error", panels::position(traces, axes)),
+        ("velocity error", panels::velocity(traces)),
+        ("attitude error", panels::attitude(traces)),
+        ("adapter activity", panels::adaptation(traces, nis_bound)),
+    ];
+    let mut written = Vec::with_capacity(2 * FIGURES.len());
+    for ((what, panels), stem) in figures.into_iter().zip(FIGURES) {
+        let figure = Figure {
+            title: if title.is_empty() {
+                what.to_string()
+            } else {
+                format!("{title}: {what}")
+            },
+            filters: filters.clone(),
+            panels,
+        };
+        written.extend(figure.save(dir, stem)?);
+    }
+    Ok(written)
 }

@@ -1,0 +1,139 @@
+//! The per-epoch CSV layout and a streaming writer for it.
+
+use std::fmt::Write as _;
+use std::io;
+
+use kestrel::nav::experiment::{EpochRecord, PositionAxes};
+
+/// The column names of the per-epoch CSV, units in the names: time, the
+/// position error in `axes`, the velocity and attitude errors north, east,
+/// down, then what the update did.
+///
+/// ```
+/// use kestrel_cli::output::epoch_columns;
+/// use kestrel::nav::experiment::PositionAxes;
+/// let c = epoch_columns(PositionAxes::NorthEastDown);
+/// assert_eq!(c[..4], ["time_s", "pos_north_m", "pos_east_m", "pos_down_m"]);
+/// assert_eq!(c.len(), 18);
+/// ```
+pub fn epoch_columns(axes: PositionAxes) -> [&'static str; 18] {
+    let position = match axes {
+        PositionAxes::NorthEastDown => ["pos_north_m", "pos_east_m", "pos_down_m"],
+        PositionAxes::EastNorthUp => ["pos_east_m", "pos_north_m", "pos_up_m"],
+    };
+    [
+        "time_s",
+        position[0],
+        position[1],
+        position[2],
+        "vel_north_mps",
+        "vel_east_mps",
+        "vel_down_mps",
+        "att_north_deg",
+        "att_east_deg",
+        "att_down_deg",
+        "nis",
+        "rejected",
+        "fade",
+        "inflation",
+        "inflated",
+        "compression",
+        "alpha1",
+        "noise_trace",
+    ]
+}
+
+/// Writes epoch records as CSV rows one at a time, so a long run can be
+/// streamed to disk instead of kept in memory.
+///
+/// ```
+/// use kestrel_cli::output::EpochCsvWriter;
+/// use kestrel::nav::experiment::{Adaptation, EpochRecord, PositionAxes};
+/// use kestrel::nav::nalgebra::Vector3;
+/// let mut w = EpochCsvWriter::new(Vec::new(), PositionAxes::NorthEastDown).unwrap();
+/// let r = EpochRecord { time: 0.1, position: Vector3::zeros(), velocity: Vector3::zeros(),
+///     attitude: Vector3::zeros(), adaptation: Adaptation { rejected: true, ..Adaptation::default() } };
+/// w.write(&r).unwrap();
+/// let text = String::from_utf8(w.finish_into_inner().unwrap()).unwrap();
+/// assert_eq!(text.lines().nth(1), Some("0.1,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,1,1.0,1.0,0,1.0,1.0,0.0"));
+/// ```
+pub struct EpochCsvWriter<W: io::Write> {
+    csv: csv::Writer<W>,
+    axes: PositionAxes,
+    field: String,
+}
+
+impl<W: io::Write> EpochCsvWriter<W> {
+    /// A writer to `out` that has written the header.
+    ///
+    /// # Errors
+    /// The I/O error of writing the header.
+    pub fn new(out: W, axes: PositionAxes) -> io::Result<Self> {
+        let mut csv = csv::Writer::from_writer(out);
+        csv.write_record(epoch_columns(axes))?;
+        Ok(Self {
+            csv,
+            axes,
+            field: String::with_capacity(32),
+        })
+    }
+
+    /// Writes one row.
+    ///
+    /// # Errors
+    /// The I/O error of writing it.
+    pub fn write(&mut self, r: &EpochRecord) -> io::Result<()> {
+        let to_deg = 180.0 / std::f64::consts::PI;
+        let p = self.axes.from_ned(&r.position);
+        let a = &r.adaptation;
+        self.number(r.time)?;
+        for v in p.iter().chain(r.velocity.iter()) {
+            self.number(*v)?;
+        }
+        for v in r.attitude.iter() {
+            self.number(v * to_deg)?;
+        }
+        self.number(a.nis)?;
+        self.text(if a.rejected { "1" } else { "0" })?;
+        self.number(a.fade)?;
+        self.number(a.inflation)?;
+        self.field.clear();
+        let _ = write!(self.field, "{}", a.inflated);
+        self.csv.write_field(&self.field)?;
+        self.number(a.compression)?;
+        self.number(a.alpha1)?;
+        self.number(a.noise_trace)?;
+        Ok(self.csv.write_record(None::<&[u8]>)?)
+    }
+
+    /// Flushes what is buffered.
+    ///
+    /// # Errors
+    /// The I/O error of flushing.
+    pub fn finish(mut self) -> io::Result<()> {
+        self.csv.flush()
+    }
+
+    /// Flushes and returns the underlying writer.
+    ///
+    /// # Errors
+    /// The I/O error of flushing.
+    pub fn finish_into_inner(self) -> io::Result<W> {
+        self.csv
+            .into_inner()
+            .map_err(|e| io::Error::new(e.error().kind(), e.error().to_string()))
+    }
+
+    /// The shortest digits that parse back to the same `f64`; `Debug`
+    /// rather than `Display` so that tiny and huge values get an exponent
+    /// instead of hundreds of zeros.
+    fn number(&mut self, v: f64) -> io::Result<()> {
+        self.field.clear();
+        let _ = write!(self.field, "{v:?}");
+        Ok(self.csv.write_field(&self.field)?)
+    }
+
+    fn text(&mut self, s: &str) -> io::Result<()> {
+        Ok(self.csv.write_field(s)?)
+    }
+}
