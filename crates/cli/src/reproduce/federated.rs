@@ -3,7 +3,10 @@
 
 use std::fmt::Write as _;
 
-use kestrel::nav::experiment::EpochRecord;
+use kestrel::nav::experiment::{
+    compare_federated_precision, EpochRecord, PrecisionOptions, RunOptions,
+};
+use kestrel::nav::scenario::Scenario;
 
 use super::monte_carlo::FilterOutcome;
 use super::table::TextTable;
@@ -85,6 +88,37 @@ pub fn federated_section(outcomes: &[FilterOutcome]) -> String {
                     out,
                     "federated UKF vs SR-UKF: run 0 did not complete for both\n"
                 );
+            }
+        }
+    }
+    out
+}
+
+/// The precision study of paper 001: the federated UKF and SR-UKF in f64
+/// and f32, in natural and badly scaled units, with the scenario's process
+/// noise and with an over-confident one (×1/100), on the data of `seed`.
+pub fn precision_section(scenario: &Scenario, seed: u64, duration: Option<f64>) -> String {
+    let mut out = String::new();
+    let run = RunOptions {
+        duration,
+        ..RunOptions::default()
+    };
+    let studies = [
+        ("the scenario's tuning", PrecisionOptions::default()),
+        (
+            "IMU noise densities ×1/100 (over-confident Q)",
+            PrecisionOptions::small_process_noise(),
+        ),
+    ];
+    for (name, options) in studies {
+        let options = PrecisionOptions { run, ..options };
+        let _ = writeln!(out, "precision study, {name}, seed {seed}:");
+        match compare_federated_precision(scenario, seed, &options) {
+            Ok(report) => {
+                let _ = writeln!(out, "{report}\n");
+            }
+            Err(e) => {
+                let _ = writeln!(out, "   could not run: {e}\n");
             }
         }
     }

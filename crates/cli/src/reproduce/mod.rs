@@ -15,19 +15,19 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use kestrel::nav::experiment::PositionAxes;
-use kestrel::nav::scenario::{builtin, by_name, Scenario};
+use kestrel::nav::scenario::{builtin, by_name, FilterKind, MeasurementKind, Scenario};
 
-pub use federated::{federated_section, largest_difference};
+pub use federated::{federated_section, largest_difference, precision_section};
 pub use metric::Metric;
 pub use monte_carlo::{run_monte_carlo, FilterOutcome, MonteCarloPlan, RunOutcome};
 pub use paper::{paper, Paper, PaperRow, PaperTable, PAPERS};
-pub use report::{text_report, write_summary_csv, ReportInput};
+pub use report::{text_report, write_runs_csv, write_summary_csv, ReportInput};
 pub use stats::MeanStd;
 pub use table::TextTable;
 pub use window::{Window, WindowError, WindowProbe};
 
 use crate::output::write_epochs_csv;
-use crate::plot::{error_figures, FilterTrace};
+use crate::plot::{error_figures_with, FigureOptions, FilterTrace};
 use crate::CliError;
 
 /// Options shared by `reproduce` and `run`.
@@ -146,6 +146,7 @@ fn execute(
     let mut text = text_report(&input);
     if scenario.name == "001" && paper.is_some() {
         text.push_str(&federated_section(&outcomes));
+        text.push_str(&precision_section(scenario, plan.seed, plan.duration));
     }
     if let Some(p) = paper {
         for note in p.notes {
@@ -159,7 +160,7 @@ fn execute(
     std::fs::write(&report, &text).map_err(|e| CliError::io(&report, e))?;
     println!("{text}");
     println!(
-        "wrote {} files to {} (report.txt, summary.csv, epochs_*.csv{})\n",
+        "wrote {} files to {} (report.txt, summary.csv, runs.csv, epochs_*.csv{})\n",
         written + 1,
         dir.display(),
         if args.no_plots { "" } else { ", *.png, *.svg" }
@@ -178,12 +179,13 @@ fn execute(
     Ok(())
 }
 
-/// Writes summary.csv, one epochs CSV per filter (run 0) and the figures;
+/// Writes summary.csv, runs.csv, one epochs CSV per filter (run 0) and the figures;
 /// returns the number of files written.
 fn write_outputs(dir: &Path, input: &ReportInput<'_>, plots: bool) -> Result<usize, CliError> {
     let axes = PositionAxes::for_scenario(&input.scenario.name);
     write_summary_csv(&dir.join("summary.csv"), input)?;
-    let mut files = 1;
+    write_runs_csv(&dir.join("runs.csv"), input)?;
+    let mut files = 2;
     for o in input.outcomes {
         write_epochs_csv(
             &dir.join(format!("epochs_{}.csv", slug(o.label))),
@@ -205,9 +207,32 @@ fn write_outputs(dir: &Path, input: &ReportInput<'_>, plots: bool) -> Result<usi
             "scenario {}: {}",
             input.scenario.name, input.scenario.description
         );
-        files += error_figures(dir, &title, axes, &traces)?.len();
+        let options = FigureOptions {
+            nis_dof: nis_dof(input.scenario),
+            ..FigureOptions::default()
+        };
+        files += error_figures_with(dir, &title, axes, &traces, &options)?.len();
     }
     Ok(files)
+}
+
+/// The measurement size every filter of `s` updates with, for the NIS
+/// bound (`None` for federated filters, whose locals differ).
+fn nis_dof(s: &Scenario) -> Option<usize> {
+    let federated = s.filters.iter().any(|k| {
+        matches!(
+            k,
+            FilterKind::FederatedUkf { .. } | FilterKind::FederatedSrUkf { .. }
+        )
+    });
+    if federated {
+        return None;
+    }
+    Some(match s.filter.measurement {
+        MeasurementKind::GnssPositionVelocity => 6,
+        MeasurementKind::AttitudeVelocityPosition => 9,
+        MeasurementKind::OdometerVelocity => 3,
+    })
 }
 
 /// A file-name-safe form of a label: lower case, runs of other characters

@@ -142,7 +142,22 @@ pub const PAPERS: [Paper; 5] = [
     Paper {
         name: "004",
         table: None,
-        windows: &[],
+        windows: &[
+            (
+                "climb-out",
+                Window {
+                    start: 200.0,
+                    end: 400.0,
+                },
+            ),
+            (
+                "5°/s turn",
+                Window {
+                    start: 1700.0,
+                    end: 1800.0,
+                },
+            ),
+        ],
         notes: &[
             "The paper gives no RMS table; it claims the fading filter tracks better than the standard KF through the manoeuvres and that one step takes 1e-5 to 1e-4 s on a PC.",
         ],

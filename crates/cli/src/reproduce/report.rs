@@ -141,7 +141,7 @@ fn window_table(out: &mut String, input: &ReportInput<'_>, paper: &Paper) {
     if paper.windows.is_empty() {
         return;
     }
-    let mut header = vec!["horizontal error in window, m".to_string()];
+    let mut header = vec!["position error in window, m".to_string()];
     for (name, w) in paper.windows {
         header.push(format!("{name} [{}, {}] s: max", w.start, w.end));
         header.push("added".to_string());
@@ -158,7 +158,7 @@ fn window_table(out: &mut String, input: &ReportInput<'_>, paper: &Paper) {
     let _ = writeln!(out, "{t}");
     let _ = writeln!(
         out,
-        "   max: largest horizontal error in the window; added: largest change of the horizontal error since the window began\n"
+        "   max: largest position error (3-D) in the window; added: largest change of the position error vector since the window began\n"
     );
 }
 
@@ -230,6 +230,48 @@ pub fn write_summary_csv(path: &Path, input: &ReportInput<'_>) -> Result<(), Cli
                 paper,
             ])
             .map_err(io)?;
+        }
+    }
+    w.flush().map_err(|e| CliError::io(path, e))
+}
+
+/// Writes the per-run CSV: one row per filter and run.
+///
+/// Columns: `scenario, filter, run, seed, status` (`ok` or `failed`),
+/// `failure` (why, empty when ok), then every [`Metric`] of the run (empty
+/// when it failed).
+///
+/// # Errors
+/// [`CliError::Io`] if the file cannot be written.
+pub fn write_runs_csv(path: &Path, input: &ReportInput<'_>) -> Result<(), CliError> {
+    let io = |e: csv::Error| CliError::Failed(format!("{}: {e}", path.display()));
+    let mut w = csv::Writer::from_path(path).map_err(io)?;
+    let axes = input.axes();
+    let mut header: Vec<String> = ["scenario", "filter", "run", "seed", "status", "failure"]
+        .map(String::from)
+        .to_vec();
+    header.extend(Metric::ALL.iter().map(|m| m.name(axes)));
+    w.write_record(&header).map_err(io)?;
+    for o in input.outcomes {
+        for (run, outcome) in o.runs.iter().enumerate() {
+            let seed = input.plan.seed.wrapping_add(run as u64);
+            let mut row = vec![
+                input.scenario.name.clone(),
+                o.label.to_string(),
+                run.to_string(),
+                seed.to_string(),
+            ];
+            match outcome {
+                Ok((summary, _)) => {
+                    row.extend(["ok".to_string(), String::new()]);
+                    row.extend(Metric::ALL.iter().map(|m| m.value(summary).to_string()));
+                }
+                Err(e) => {
+                    row.extend(["failed".to_string(), e.to_string()]);
+                    row.extend(Metric::ALL.iter().map(|_| String::new()));
+                }
+            }
+            w.write_record(&row).map_err(io)?;
         }
     }
     w.flush().map_err(|e| CliError::io(path, e))

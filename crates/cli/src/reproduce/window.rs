@@ -1,5 +1,5 @@
 //! Errors inside time windows of a run: how large the position error got
-//! and how much it grew, e.g. around a sensor fault.
+//! and how much it grew, e.g. around a sensor fault or a manoeuvre.
 
 use kestrel::nav::experiment::EpochRecord;
 use nalgebra::Vector3;
@@ -13,14 +13,14 @@ pub struct Window {
     pub end: f64,
 }
 
-/// What the horizontal position error did inside a [`Window`].
+/// What the position error (3-D, metres) did inside a [`Window`].
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct WindowError {
-    /// The largest horizontal position error in the window, metres.
+    /// The largest position error norm in the window, metres.
     pub max: f64,
-    /// The largest change of the horizontal position error vector since
-    /// the last epoch before the window, metres: the error the window's
-    /// event added, free of what earlier events left.
+    /// The largest change of the position error vector since the last
+    /// epoch before the window, metres: the error the window's event added,
+    /// free of what earlier events left.
     pub growth: f64,
 }
 
@@ -63,7 +63,6 @@ impl WindowProbe {
 
     /// Takes the next record (in time order).
     pub fn add(&mut self, r: &EpochRecord) {
-        let horizontal = Vector3::new(r.position.x, r.position.y, 0.0);
         for ((w, before), e) in self
             .windows
             .iter()
@@ -71,10 +70,10 @@ impl WindowProbe {
             .zip(&mut self.errors)
         {
             if r.time < w.start {
-                *before = horizontal;
+                *before = r.position;
             } else if r.time <= w.end {
-                e.max = e.max.max(horizontal.norm());
-                e.growth = e.growth.max((horizontal - *before).norm());
+                e.max = e.max.max(r.position.norm());
+                e.growth = e.growth.max((r.position - *before).norm());
             }
         }
     }
