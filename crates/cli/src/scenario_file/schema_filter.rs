@@ -1,0 +1,115 @@
+//! The estimation tables of the file: `[filter]` (shared set-up) and
+//! `[[filters]]` (the filters compared).
+
+use serde::Deserialize;
+
+use super::schema_sensors::ImuSection;
+use super::vec3::V3;
+
+/// Error-state models.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum ErrorModelName {
+    Ins15,
+    Ins18,
+    Odometer16,
+}
+
+/// Measurements.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub(super) enum MeasurementName {
+    GnssPositionVelocity,
+    AttitudeVelocityPosition,
+    OdometerVelocity,
+}
+
+/// `[filter]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct FilterSection {
+    pub error_model: ErrorModelName,
+    pub odometer_scale_tau_s: Option<f64>,
+    pub measurement: MeasurementName,
+    pub lever_arm_m: Option<V3>,
+    pub odometer_mounting_deg: Option<[f64; 2]>,
+    #[serde(default)]
+    pub imu: ImuSection,
+    #[serde(default)]
+    pub p0: P0Section,
+    #[serde(default)]
+    pub r: RSection,
+}
+
+/// `[filter.p0]`: initial standard deviations.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct P0Section {
+    pub attitude_deg: Option<V3>,
+    pub attitude_arcmin: Option<V3>,
+    pub attitude_arcsec: Option<V3>,
+    pub velocity_m_s: Option<V3>,
+    pub position_m: Option<V3>,
+    pub gyro_bias_deg_per_h: Option<V3>,
+    pub gyro_markov_deg_per_h: Option<V3>,
+    pub accel_bias_ug: Option<V3>,
+    pub accel_bias_mg: Option<V3>,
+    pub odometer_scale_ppm: Option<f64>,
+    pub odometer_scale_percent: Option<f64>,
+}
+
+/// `[filter.r]`: measurement standard deviations.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RSection {
+    pub position_m: Option<V3>,
+    pub velocity_m_s: Option<V3>,
+    pub attitude_deg: Option<V3>,
+    pub attitude_arcmin: Option<V3>,
+    pub attitude_arcsec: Option<V3>,
+    pub odometer_m_s: Option<V3>,
+}
+
+/// Filter kinds.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub(super) enum FilterName {
+    Standard,
+    SageHusaFading,
+    ImprovedAdaptive,
+    FederatedUkf,
+    FederatedSrUkf,
+    IctErekf,
+    MaxThreshold,
+    FuzzyAdaptive,
+    StrongTrackingFading,
+}
+
+/// The error states a fade scales.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub(super) enum FadeName {
+    All,
+    VelocityPosition,
+    AttitudeVelocityPosition,
+}
+
+/// One `[[filters]]`: the parameters a kind takes are checked when
+/// converting.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct FilterEntry {
+    pub kind: FilterName,
+    pub forgetting: Option<f64>,
+    pub reserve: Option<f64>,
+    pub lambda_max: Option<f64>,
+    pub significance: Option<f64>,
+    pub alpha: Option<f64>,
+    pub beta: Option<f64>,
+    pub kappa: Option<f64>,
+    pub threshold_m_s: Option<f64>,
+    pub window: Option<i64>,
+    pub rho: Option<f64>,
+    pub softening: Option<f64>,
+    pub fade_states: Option<FadeName>,
+}
