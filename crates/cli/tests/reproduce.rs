@@ -156,3 +156,52 @@ fn bad_arguments_fail_with_one_line() {
         "kestrel: --runs must be at least 1"
     );
 }
+
+#[test]
+fn run_takes_a_scenario_file_and_reports_its_errors() {
+    let dir = temp_dir("run");
+    let paper = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenarios/paper-004.toml"
+    );
+    let out = kestrel(&[
+        "run",
+        paper,
+        "--runs",
+        "1",
+        "--duration",
+        "5",
+        "--no-plots",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("== Scenario 004"), "{stdout}");
+    assert!(
+        !stdout.contains("paper 004"),
+        "no paper columns for a user file"
+    );
+    assert!(dir.join("004").join("runs.csv").is_file());
+
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, "[scenario]\nname = \"x\"\nbogus = 1\n").unwrap();
+    let out = kestrel(&["run", bad.to_str().unwrap()]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("bad.toml:3:1: key `scenario.bogus`: unknown key `bogus`"),
+        "{err}"
+    );
+    let missing = dir.join("missing.toml");
+    let out = kestrel(&["run", missing.to_str().unwrap()]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("missing.toml"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
