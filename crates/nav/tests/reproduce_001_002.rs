@@ -129,20 +129,13 @@ fn gain(ekf: &Vector3<f64>, robust: &Vector3<f64>) -> f64 {
 }
 
 fn show(seed: u64, m: &RunSummary) {
-    let deg = m.rms_attitude.map(f64::to_degrees);
+    let xyz = |v: &Vector3<f64>| format!("{:.3} {:.3} {:.3}", v.x, v.y, v.z);
     eprintln!(
-        "002 seed {seed} {:>10}: position {:.3} {:.3} {:.3} m, velocity {:.3} {:.3} {:.3} m/s, \
-         attitude {:.3} {:.3} {:.3}°",
+        "002 seed {seed} {:>10}: position {} m, velocity {} m/s, attitude {}°",
         m.filter,
-        m.rms_position.x,
-        m.rms_position.y,
-        m.rms_position.z,
-        m.rms_velocity.x,
-        m.rms_velocity.y,
-        m.rms_velocity.z,
-        deg.x,
-        deg.y,
-        deg.z
+        xyz(&m.rms_position),
+        xyz(&m.rms_velocity),
+        xyz(&m.rms_attitude.map(f64::to_degrees))
     );
 }
 
@@ -152,27 +145,20 @@ fn ict_erekf_beats_the_ekf_on_urban_multipath() {
     assert!(matches!(s.filters[1], FilterKind::IctErekf { .. }));
     let opts = RunOptions::default().without_records();
     let seeds: Vec<u64> = (0..8).collect();
+    // One thread per seed: the runs are independent.
     let pairs: Vec<(RunSummary, RunSummary)> = std::thread::scope(|scope| {
+        let (s, opts) = (&s, &opts);
         let handles: Vec<_> = seeds
-            .chunks(4)
-            .map(|chunk| {
-                let (s, opts) = (&s, &opts);
+            .iter()
+            .map(|&seed| {
                 scope.spawn(move || {
-                    chunk
-                        .iter()
-                        .map(|&seed| {
-                            let ekf = run(s, &s.filters[0], seed, opts).unwrap().summary;
-                            let ict = run(s, &s.filters[1], seed, opts).unwrap().summary;
-                            (ekf, ict)
-                        })
-                        .collect::<Vec<_>>()
+                    let ekf = run(s, &s.filters[0], seed, opts).unwrap().summary;
+                    let ict = run(s, &s.filters[1], seed, opts).unwrap().summary;
+                    (ekf, ict)
                 })
             })
             .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| h.join().unwrap())
-            .collect()
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
     });
     let n = pairs.len() as f64;
     let (mut pos, mut vel) = (0.0, 0.0);

@@ -1,5 +1,9 @@
 //! Degrees in text, radians inside: conversions that survive a round trip.
 
+use core::fmt;
+
+use kestrel::nav::Geodetic;
+
 /// Radians from degrees, the one conversion every reader uses.
 ///
 /// ```
@@ -57,4 +61,21 @@ pub fn invert_exact(target: f64, approx: f64, forward: impl Fn(f64) -> f64) -> f
         }
     }
     approx
+}
+
+/// The three position columns `lat lon h` of the GNSS and navigation
+/// formats: degrees by [`degrees_exact`], metres.
+pub(crate) struct PositionColumns<'a>(pub &'a Geodetic);
+
+impl fmt::Display for PositionColumns<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let p = self.0;
+        write!(
+            f,
+            "{} {} {}",
+            degrees_exact(p.lat),
+            degrees_exact(p.lon),
+            p.h
+        )
+    }
 }

@@ -8,8 +8,9 @@ use kestrel::nav::measurement::GnssFix;
 use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::Geodetic;
 
-use super::angle::{degrees_exact, degrees_to_radians};
+use super::angle::{degrees_to_radians, PositionColumns};
 use super::line::{open, Lines};
+use super::stream::Stream;
 use crate::{CliError, InputError};
 
 const NAMES: &[&str] = &[
@@ -45,10 +46,7 @@ const STD_COLUMNS: [usize; 6] = [4, 5, 6, 10, 11, 12];
 /// ```
 #[derive(Debug)]
 pub struct GnssReader<R> {
-    lines: Lines<R>,
-    columns: Option<usize>,
-    previous: Option<(f64, usize)>,
-    failed: bool,
+    stream: Stream<R>,
 }
 
 impl GnssReader<BufReader<File>> {
@@ -65,74 +63,8 @@ impl<R: BufRead> GnssReader<R> {
     /// Reads GNSS lines from `reader`, calling it `path` in errors.
     pub fn new(reader: R, path: &Path) -> Self {
         Self {
-            lines: Lines::new(reader, path, NAMES, &[7, 13], LAYOUT),
-            columns: None,
-            previous: None,
-            failed: false,
+            stream: Stream::new(Lines::new(reader, path, NAMES, &[7, 13], LAYOUT)),
         }
-    }
-
-    fn record(&mut self) -> Option<Result<GnssFix, InputError>> {
-        let f = match self.lines.next_fields()? {
-            Ok(f) => f,
-            Err(e) => return Some(Err(e)),
-        };
-        let path = self.lines.path();
-        let at = |column: usize, msg: String| Some(Err(InputError::at(path, f.line, column, msg)));
-        match self.columns {
-            None => self.columns = Some(f.count),
-            Some(c) if c != f.count => {
-                return at(
-                    c.min(f.count) + 1,
-                    format!(
-                        "expected {c} columns like the first data line, found {}",
-                        f.count
-                    ),
-                )
-            }
-            Some(_) => {}
-        }
-        let v = &f.values;
-        if let Some((t0, l0)) = self.previous {
-            if v[0] <= t0 {
-                return at(
-                    1,
-                    format!(
-                        "time does not increase: {} s after {t0} s at line {l0} \
-                         (expected increasing seconds of week)",
-                        v[0]
-                    ),
-                );
-            }
-        }
-        if v[1].abs() > 90.0 {
-            return at(
-                2,
-                format!("expected a latitude in [-90, 90] deg, found {}", v[1]),
-            );
-        }
-        for &c in STD_COLUMNS.iter().filter(|&&c| c < f.count) {
-            if v[c] <= 0.0 {
-                return at(
-                    c + 1,
-                    format!(
-                        "expected a positive standard deviation ({}), found {}",
-                        NAMES[c], v[c]
-                    ),
-                );
-            }
-        }
-        self.previous = Some((v[0], f.line));
-        let pos = Geodetic::new(degrees_to_radians(v[1]), degrees_to_radians(v[2]), v[3]);
-        let pos_std = Vector3::new(v[4], v[5], v[6]);
-        let fix = if f.count == 13 {
-            GnssFix::new(v[0], pos, Vector3::new(v[7], v[8], v[9]))
-                .with_std(pos_std, Vector3::new(v[10], v[11], v[12]))
-        } else {
-            let p = GnssFix::position_only(v[0], pos);
-            p.with_std(pos_std, p.vel_std)
-        };
-        Some(Ok(fix))
     }
 }
 
@@ -141,12 +73,32 @@ impl<R: BufRead> Iterator for GnssReader<R> {
 
     /// The next fix; after an error the reader ends.
     fn next(&mut self) -> Option<Self::Item> {
-        if self.failed {
-            return None;
-        }
-        let r = self.record();
-        self.failed = matches!(r, Some(Err(_)));
-        r
+        self.stream.next(|s, f| {
+            let v = &f.values;
+            s.advance_seconds(f)?;
+            s.latitude(f, 1)?;
+            for &c in STD_COLUMNS.iter().filter(|&&c| c < f.count) {
+                if v[c] <= 0.0 {
+                    return Err(s.at(
+                        f,
+                        c + 1,
+                        format!(
+                            "expected a positive standard deviation ({}), found {}",
+                            NAMES[c], v[c]
+                        ),
+                    ));
+                }
+            }
+            let pos = Geodetic::new(degrees_to_radians(v[1]), degrees_to_radians(v[2]), v[3]);
+            let pos_std = Vector3::new(v[4], v[5], v[6]);
+            Ok(if f.count == 13 {
+                GnssFix::new(v[0], pos, Vector3::new(v[7], v[8], v[9]))
+                    .with_std(pos_std, Vector3::new(v[10], v[11], v[12]))
+            } else {
+                let p = GnssFix::position_only(v[0], pos);
+                p.with_std(pos_std, p.vel_std)
+            })
+        })
     }
 }
 
@@ -201,11 +153,9 @@ impl<W: Write> GnssWriter<W> {
         let s = &fix.pos_std;
         write!(
             self.out,
-            "{} {} {} {} {} {} {}",
+            "{} {} {} {} {}",
             fix.time,
-            degrees_exact(fix.pos.lat),
-            degrees_exact(fix.pos.lon),
-            fix.pos.h,
+            PositionColumns(&fix.pos),
             s.x,
             s.y,
             s.z

@@ -8,6 +8,7 @@ use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::ImuIncrement;
 
 use super::line::{open, Lines};
+use super::stream::Stream;
 use crate::{CliError, InputError};
 
 const NAMES: &[&str] = &[
@@ -71,12 +72,9 @@ impl ImuRecord {
 /// ```
 #[derive(Debug)]
 pub struct ImuReader<R> {
-    lines: Lines<R>,
-    columns: Option<usize>,
-    previous: Option<(f64, usize)>,
+    stream: Stream<R>,
     nominal: Option<f64>,
     gap_factor: f64,
-    failed: bool,
 }
 
 impl ImuReader<BufReader<File>> {
@@ -97,12 +95,9 @@ impl<R: BufRead> ImuReader<R> {
     /// Reads IMU lines from `reader`, calling it `path` in errors.
     pub fn new(reader: R, path: &Path) -> Self {
         Self {
-            lines: Lines::new(reader, path, NAMES, &[7, 8], LAYOUT),
-            columns: None,
-            previous: None,
+            stream: Stream::new(Lines::new(reader, path, NAMES, &[7, 8], LAYOUT)),
             nominal: None,
             gap_factor: Self::GAP_FACTOR,
-            failed: false,
         }
     }
 
@@ -122,76 +117,7 @@ impl<R: BufRead> ImuReader<R> {
 
     /// The file's name.
     pub fn path(&self) -> &Path {
-        self.lines.path()
-    }
-
-    fn check(&mut self, time: f64, line: usize) -> Result<(), InputError> {
-        let path = self.lines.path();
-        if let Some((t0, l0)) = self.previous {
-            let dt = time - t0;
-            if dt <= 0.0 {
-                return Err(InputError::at(
-                    path,
-                    line,
-                    1,
-                    format!(
-                        "time does not increase: {time} s after {t0} s at line {l0} \
-                         (expected increasing seconds of week)"
-                    ),
-                ));
-            }
-            match self.nominal {
-                None => self.nominal = Some(dt),
-                Some(n) if dt > self.gap_factor * n => {
-                    return Err(InputError::at(
-                        path,
-                        line,
-                        1,
-                        format!(
-                            "gap in the IMU data: {dt} s since line {l0}, more than {} × the \
-                             first interval {n} s (expected evenly spaced samples)",
-                            self.gap_factor
-                        ),
-                    ))
-                }
-                Some(_) => {}
-            }
-        }
-        self.previous = Some((time, line));
-        Ok(())
-    }
-
-    fn record(&mut self) -> Option<Result<ImuRecord, InputError>> {
-        let f = match self.lines.next_fields()? {
-            Ok(f) => f,
-            Err(e) => return Some(Err(e)),
-        };
-        match self.columns {
-            None => self.columns = Some(f.count),
-            Some(c) if c != f.count => {
-                return Some(Err(InputError::at(
-                    self.lines.path(),
-                    f.line,
-                    c.min(f.count) + 1,
-                    format!(
-                        "expected {c} columns like the first data line, found {}",
-                        f.count
-                    ),
-                )))
-            }
-            Some(_) => {}
-        }
-        let v = &f.values;
-        if let Err(e) = self.check(v[0], f.line) {
-            return Some(Err(e));
-        }
-        Some(Ok(ImuRecord {
-            time: v[0],
-            dtheta: Vector3::new(v[1], v[2], v[3]),
-            dvel: Vector3::new(v[4], v[5], v[6]),
-            odometer: (f.count == 8).then_some(v[7]),
-            line: f.line,
-        }))
+        self.stream.path()
     }
 }
 
@@ -200,12 +126,35 @@ impl<R: BufRead> Iterator for ImuReader<R> {
 
     /// The next record; after an error the reader ends.
     fn next(&mut self) -> Option<Self::Item> {
-        if self.failed {
-            return None;
-        }
-        let r = self.record();
-        self.failed = matches!(r, Some(Err(_)));
-        r
+        let (nominal, gap_factor) = (&mut self.nominal, self.gap_factor);
+        self.stream.next(|s, f| {
+            let v = &f.values;
+            if let Some((t0, l0)) = s.advance_seconds(f)? {
+                let dt = v[0] - t0;
+                match *nominal {
+                    None => *nominal = Some(dt),
+                    Some(n) if dt > gap_factor * n => {
+                        return Err(s.at(
+                            f,
+                            1,
+                            format!(
+                                "gap in the IMU data: {dt} s since line {l0}, more than \
+                                 {gap_factor} × the first interval {n} s (expected evenly \
+                                 spaced samples)"
+                            ),
+                        ))
+                    }
+                    Some(_) => {}
+                }
+            }
+            Ok(ImuRecord {
+                time: v[0],
+                dtheta: Vector3::new(v[1], v[2], v[3]),
+                dvel: Vector3::new(v[4], v[5], v[6]),
+                odometer: (f.count == 8).then_some(v[7]),
+                line: f.line,
+            })
+        })
     }
 }
 

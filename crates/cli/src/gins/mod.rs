@@ -28,6 +28,7 @@ mod gnss;
 mod imu;
 mod line;
 mod nav;
+mod stream;
 mod tail;
 
 pub use angle::{degrees_exact, degrees_to_radians, invert_exact};

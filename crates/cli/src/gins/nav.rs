@@ -8,8 +8,9 @@ use std::path::Path;
 use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::{Euler, Geodetic, NavState};
 
-use super::angle::{degrees_exact, degrees_to_radians};
+use super::angle::{degrees_to_radians, PositionColumns};
 use super::line::{open, Lines};
+use super::stream::Stream;
 use crate::{CliError, InputError};
 
 const NAMES: &[&str] = &[
@@ -59,9 +60,7 @@ pub struct NavRecord {
 /// ```
 #[derive(Debug)]
 pub struct NavReader<R> {
-    lines: Lines<R>,
-    previous: Option<(f64, usize)>,
-    failed: bool,
+    stream: Stream<R>,
 }
 
 impl NavReader<BufReader<File>> {
@@ -78,46 +77,8 @@ impl<R: BufRead> NavReader<R> {
     /// Reads navigation lines from `reader`, calling it `path` in errors.
     pub fn new(reader: R, path: &Path) -> Self {
         Self {
-            lines: Lines::new(reader, path, NAMES, &[11], LAYOUT),
-            previous: None,
-            failed: false,
+            stream: Stream::new(Lines::new(reader, path, NAMES, &[11], LAYOUT)),
         }
-    }
-
-    fn record(&mut self) -> Option<Result<NavRecord, InputError>> {
-        let f = match self.lines.next_fields()? {
-            Ok(f) => f,
-            Err(e) => return Some(Err(e)),
-        };
-        let path = self.lines.path();
-        let at = |column: usize, msg: String| Some(Err(InputError::at(path, f.line, column, msg)));
-        let v = &f.values;
-        if v[0] < 0.0 || v[0].fract() != 0.0 || v[0] > f64::from(u32::MAX) {
-            return at(1, format!("expected a whole GNSS week, found {}", v[0]));
-        }
-        if v[2].abs() > 90.0 {
-            return at(
-                3,
-                format!("expected a latitude in [-90, 90] deg, found {}", v[2]),
-            );
-        }
-        let t = v[0] * WEEK_SECONDS + v[1];
-        if let Some((t0, l0)) = self.previous {
-            if t <= t0 {
-                return at(
-                    2,
-                    format!("time does not increase: not after line {l0} (expected increasing week and seconds of week)"),
-                );
-            }
-        }
-        self.previous = Some((t, f.line));
-        let pos = Geodetic::new(degrees_to_radians(v[2]), degrees_to_radians(v[3]), v[4]);
-        let euler = Euler::from_degrees(v[8], v[9], v[10]);
-        Some(Ok(NavRecord {
-            week: v[0] as u32,
-            state: NavState::new(v[1], pos, Vector3::new(v[5], v[6], v[7]), euler),
-            line: f.line,
-        }))
     }
 }
 
@@ -126,12 +87,31 @@ impl<R: BufRead> Iterator for NavReader<R> {
 
     /// The next record; after an error the reader ends.
     fn next(&mut self) -> Option<Self::Item> {
-        if self.failed {
-            return None;
-        }
-        let r = self.record();
-        self.failed = matches!(r, Some(Err(_)));
-        r
+        self.stream.next(|s, f| {
+            let v = &f.values;
+            if v[0] < 0.0 || v[0].fract() != 0.0 || v[0] > f64::from(u32::MAX) {
+                return Err(s.at(f, 1, format!("expected a whole GNSS week, found {}", v[0])));
+            }
+            s.latitude(f, 2)?;
+            s.advance(v[0] * WEEK_SECONDS + v[1], f)
+                .map_err(|(_, l0)| {
+                    s.at(
+                        f,
+                        2,
+                        format!(
+                            "time does not increase: not after line {l0} (expected increasing \
+                         week and seconds of week)"
+                        ),
+                    )
+                })?;
+            let pos = Geodetic::new(degrees_to_radians(v[2]), degrees_to_radians(v[3]), v[4]);
+            let euler = Euler::from_degrees(v[8], v[9], v[10]);
+            Ok(NavRecord {
+                week: v[0] as u32,
+                state: NavState::new(v[1], pos, Vector3::new(v[5], v[6], v[7]), euler),
+                line: f.line,
+            })
+        })
     }
 }
 
@@ -213,7 +193,8 @@ impl<W: Write> NavWriter<W> {
 
 /// Appends the navigation line of `state` in `week` (with its newline) to
 /// `out`: the columns separated by single spaces, numbers as shortest
-/// round-trip decimals, latitude and longitude by [`degrees_exact`].
+/// round-trip decimals, latitude and longitude by
+/// [`degrees_exact`](super::degrees_exact).
 ///
 /// ```
 /// use kestrel::nav::{NavState, Geodetic, Euler, nalgebra::Vector3};
@@ -231,11 +212,9 @@ pub fn nav_line(week: u32, state: &NavState, out: &mut String) {
     // Writing into a String cannot fail.
     let _ = writeln!(
         out,
-        "{week} {} {} {} {} {} {} {} {roll} {pitch} {yaw}",
+        "{week} {} {} {} {} {} {roll} {pitch} {yaw}",
         state.time,
-        degrees_exact(state.pos.lat),
-        degrees_exact(state.pos.lon),
-        state.pos.h,
+        PositionColumns(&state.pos),
         v.x,
         v.y,
         v.z

@@ -130,19 +130,9 @@ struct Output {
     position_axes: Option<String>,
 }
 
-/// Where the GNSS `R` comes from.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum GnssNoise {
-    /// The σ each line of the GNSS file reports.
-    File,
-    /// Fixed σ: position (NED, m), velocity (NED, m/s).
-    Fixed {
-        /// Position σ, m.
-        position: Vector3<f64>,
-        /// Velocity σ, m/s.
-        velocity: Vector3<f64>,
-    },
-}
+/// Where the GNSS `R` comes from: `Reported` is `noise = "file"` (the σ
+/// each line of the GNSS file reports).
+pub use kestrel::nav::experiment::GnssNoise;
 
 /// Odometer aiding (the IMU file's 8th column).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -383,7 +373,7 @@ impl Check<'_> {
                 if f.gnss.position_std.is_some() || f.gnss.velocity_std.is_some() {
                     return Err(self.err("gnss.noise", "fixed σ given but noise = `file`"));
                 }
-                GnssNoise::File
+                GnssNoise::Reported
             }
             "fixed" => {
                 let (Some(p), Some(v)) = (f.gnss.position_std, f.gnss.velocity_std) else {
@@ -552,19 +542,15 @@ impl Check<'_> {
         let forgetting = || self.range("filter.forgetting", f.forgetting.unwrap_or(0.97), 0.0, 1.0);
         let reserve = || self.at_least("filter.reserve", f.reserve.unwrap_or(1.0), 1.0);
         let lambda_max = || self.at_least("filter.lambda_max", f.lambda_max.unwrap_or(10.0), 1.0);
-        let fade_states = match f.fade_states.as_deref().unwrap_or("all") {
-            "all" => FadeBlock::All,
-            "velocity-position" => FadeBlock::VelocityPosition,
-            "attitude-velocity-position" => FadeBlock::AttitudeVelocityPosition,
-            other => {
-                return Err(self.err(
-                    "filter.fade_states",
-                    format!(
-                        "expected `all`, `velocity-position` or `attitude-velocity-position`, \
-                         found `{other}`"
-                    ),
-                ))
-            }
+        let fade_name = f.fade_states.as_deref().unwrap_or("all");
+        let Some(fade_states) = FadeBlock::from_name(fade_name) else {
+            return Err(self.err(
+                "filter.fade_states",
+                format!(
+                    "expected `all`, `velocity-position` or `attitude-velocity-position`, \
+                     found `{fade_name}`"
+                ),
+            ));
         };
         Ok(match name {
             "ict-erekf" => FilterKind::IctErekf {

@@ -10,10 +10,9 @@
 //! steps are those of the experiment runner, so simulated data written by
 //! `kestrel simulate` gives the same errors as the in-memory run.
 
-mod aiding;
 pub mod config;
-mod describe;
 mod dispatch;
+pub(crate) mod filter_params;
 mod outage;
 mod pipeline;
 mod progress;

@@ -19,20 +19,25 @@ pub enum Metric {
 }
 
 impl Metric {
-    /// The metrics every table reports, in column order.
+    /// The metrics every table reports, in column order: the position
+    /// metrics (the first [`POSITION_METRICS`](Self::POSITION_METRICS)),
+    /// then velocity and attitude.
     pub const ALL: [Metric; 11] = [
         Metric::Position(0),
         Metric::Position(1),
         Metric::Position(2),
         Metric::Horizontal,
+        Metric::MaxPosition,
         Metric::Velocity(0),
         Metric::Velocity(1),
         Metric::Velocity(2),
         Metric::Attitude(0),
         Metric::Attitude(1),
         Metric::Attitude(2),
-        Metric::MaxPosition,
     ];
+
+    /// How many of [`ALL`](Self::ALL) are position metrics.
+    pub const POSITION_METRICS: usize = 5;
 
     /// The value of this metric in `summary`.
     ///

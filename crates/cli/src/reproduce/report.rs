@@ -51,28 +51,10 @@ pub fn text_report(input: &ReportInput<'_>) -> String {
         plan.seed.wrapping_add(plan.runs as u64 - 1),
     );
     let axes = input.axes();
-    let groups: [(&str, &[Metric]); 2] = [
-        (
-            "position error, m",
-            &[
-                Metric::Position(0),
-                Metric::Position(1),
-                Metric::Position(2),
-                Metric::Horizontal,
-                Metric::MaxPosition,
-            ],
-        ),
-        (
-            "velocity error, m/s and attitude error, deg",
-            &[
-                Metric::Velocity(0),
-                Metric::Velocity(1),
-                Metric::Velocity(2),
-                Metric::Attitude(0),
-                Metric::Attitude(1),
-                Metric::Attitude(2),
-            ],
-        ),
+    let (position, motion) = Metric::ALL.split_at(Metric::POSITION_METRICS);
+    let groups = [
+        ("position error, m", position),
+        ("velocity error, m/s and attitude error, deg", motion),
     ];
     for (title, metrics) in groups {
         let mut header = vec![format!("{title}")];

@@ -8,6 +8,7 @@ use super::emit::{number, Writer};
 use super::emit_sections::decimal_deg;
 use super::emit_sensors::imu_errors;
 use super::units::{ACCEL, ANGLE, GYRO_RATE, RATIO, SI};
+use crate::process::filter_params::{filter_params, Param};
 
 pub(super) fn filter(w: &mut Writer, s: &Scenario) {
     let f = &s.filter;
@@ -125,138 +126,72 @@ pub(super) fn filter(w: &mut Writer, s: &Scenario) {
 
 pub(super) fn filter_entry(w: &mut Writer, f: &FilterKind) {
     w.table("filters", true, &format!("Filter \"{}\".", f.label()));
-    match *f {
-        FilterKind::Standard => w.string("kind", "standard", "no adaptation"),
-        FilterKind::SageHusaFading {
-            forgetting,
-            reserve,
-            lambda_max,
-            fade_states,
-        } => {
-            w.string("kind", "sage-husa-fading", "Sage-Husa R + fading memory");
-            fading(w, forgetting, reserve, lambda_max);
-            fade(w, fade_states);
-        }
-        FilterKind::ImprovedAdaptive {
-            forgetting,
-            reserve,
-            lambda_max,
-            significance,
-            fade_states,
-        } => {
-            w.string(
-                "kind",
-                "improved-adaptive",
-                "Sage-Husa + fading + χ² compression",
-            );
-            fading(w, forgetting, reserve, lambda_max);
-            w.num(
-                "significance",
-                significance,
-                "α of the χ² compression threshold, (0, 0.5)",
-            );
-            fade(w, fade_states);
-        }
-        FilterKind::FederatedUkf { alpha, beta, kappa } => {
-            w.string(
-                "kind",
-                "federated-ukf",
-                "federated: local GNSS KF + local UKF",
-            );
-            sigma_points(w, alpha, beta, kappa);
-        }
-        FilterKind::FederatedSrUkf { alpha, beta, kappa } => {
-            w.string(
-                "kind",
-                "federated-sr-ukf",
-                "federated with the square-root UKF",
-            );
-            sigma_points(w, alpha, beta, kappa);
-        }
-        FilterKind::IctErekf { significance } => {
-            w.string(
-                "kind",
-                "ict-erekf",
-                "innovation χ² tests + robust R inflation",
-            );
-            w.num("significance", significance, "α of the tests, (0, 0.5)");
-        }
-        FilterKind::MaxThreshold { threshold } => {
-            w.string(
-                "kind",
-                "max-threshold",
-                "isolate the odometer on a speed mismatch",
-            );
-            w.num(
-                "threshold_m_s",
-                threshold,
-                "|v_INS − v_odometer| limit, m/s, > 0",
-            );
-        }
-        FilterKind::FuzzyAdaptive { window } => {
-            w.string("kind", "fuzzy-adaptive", "fuzzy odometer gain + windowed R");
-            w.raw(
+    let (kind, what) = kind_name(f);
+    w.string("kind", kind, what);
+    for p in filter_params(f) {
+        match p {
+            Param::Number("threshold", v) => {
+                w.num("threshold_m_s", v, "|v_INS − v_odometer| limit, m/s, > 0")
+            }
+            Param::Number(key, v) => w.num(key, v, comment(f, key)),
+            Param::Window(n) => w.raw(
                 "window",
-                &window.to_string(),
+                &n.to_string(),
                 "innovations in the R window: 10, 20 or 50",
-            );
-        }
-        FilterKind::StrongTrackingFading {
-            rho,
-            softening,
-            lambda_max,
-            fade_states,
-        } => {
-            w.string("kind", "strong-tracking-fading", "suboptimal fading factor");
-            w.num(
-                "rho",
-                rho,
-                "forgetting factor ρ of the innovation covariance, (0, 1]",
-            );
-            w.num("softening", softening, "softening β on R, ≥ 1");
-            w.num(
-                "lambda_max",
-                lambda_max,
-                "upper clamp of λ, ≥ 1 (inf: none)",
-            );
-            fade(w, fade_states);
+            ),
+            Param::Fade(states) => fade(w, states),
         }
     }
 }
 
-fn fading(w: &mut Writer, forgetting: f64, reserve: f64, lambda_max: f64) {
-    w.num(
-        "forgetting",
-        forgetting,
-        "Sage-Husa forgetting factor b, (0, 1]",
-    );
-    w.num(
-        "reserve",
-        reserve,
-        "reserve coefficient γ of the divergence test, ≥ 1",
-    );
-    w.num(
-        "lambda_max",
-        lambda_max,
-        "upper clamp of the fading factor λ, ≥ 1 (inf: none)",
-    );
+/// The `kind` value of a filter and what it is.
+fn kind_name(f: &FilterKind) -> (&'static str, &'static str) {
+    match f {
+        FilterKind::Standard => ("standard", "no adaptation"),
+        FilterKind::SageHusaFading { .. } => ("sage-husa-fading", "Sage-Husa R + fading memory"),
+        FilterKind::ImprovedAdaptive { .. } => {
+            ("improved-adaptive", "Sage-Husa + fading + χ² compression")
+        }
+        FilterKind::FederatedUkf { .. } => {
+            ("federated-ukf", "federated: local GNSS KF + local UKF")
+        }
+        FilterKind::FederatedSrUkf { .. } => {
+            ("federated-sr-ukf", "federated with the square-root UKF")
+        }
+        FilterKind::IctErekf { .. } => ("ict-erekf", "innovation χ² tests + robust R inflation"),
+        FilterKind::MaxThreshold { .. } => {
+            ("max-threshold", "isolate the odometer on a speed mismatch")
+        }
+        FilterKind::FuzzyAdaptive { .. } => ("fuzzy-adaptive", "fuzzy odometer gain + windowed R"),
+        FilterKind::StrongTrackingFading { .. } => {
+            ("strong-tracking-fading", "suboptimal fading factor")
+        }
+    }
+}
+
+/// The comment of the numeric parameter `key` of `f`.
+fn comment(f: &FilterKind, key: &str) -> &'static str {
+    let strong_tracking = matches!(f, FilterKind::StrongTrackingFading { .. });
+    match key {
+        "forgetting" => "Sage-Husa forgetting factor b, (0, 1]",
+        "reserve" => "reserve coefficient γ of the divergence test, ≥ 1",
+        "lambda_max" if strong_tracking => "upper clamp of λ, ≥ 1 (inf: none)",
+        "lambda_max" => "upper clamp of the fading factor λ, ≥ 1 (inf: none)",
+        "significance" if matches!(f, FilterKind::IctErekf { .. }) => "α of the tests, (0, 0.5)",
+        "significance" => "α of the χ² compression threshold, (0, 0.5)",
+        "alpha" => "sigma-point spread α, (0, 1]",
+        "beta" => "prior-knowledge β (2: Gaussian), ≥ 0",
+        "kappa" => "secondary scaling κ",
+        "rho" => "forgetting factor ρ of the innovation covariance, (0, 1]",
+        "softening" => "softening β on R, ≥ 1",
+        _ => "",
+    }
 }
 
 fn fade(w: &mut Writer, states: FadeBlock) {
-    let name = match states {
-        FadeBlock::All => "all",
-        FadeBlock::VelocityPosition => "velocity-position",
-        FadeBlock::AttitudeVelocityPosition => "attitude-velocity-position",
-    };
     w.string(
         "fade_states",
-        name,
+        states.name(),
         "states the fade scales: \"all\" (papers), \"velocity-position\", \"attitude-velocity-position\"",
     );
-}
-
-fn sigma_points(w: &mut Writer, alpha: f64, beta: f64, kappa: f64) {
-    w.num("alpha", alpha, "sigma-point spread α, (0, 1]");
-    w.num("beta", beta, "prior-knowledge β (2: Gaussian), ≥ 0");
-    w.num("kappa", kappa, "secondary scaling κ");
 }

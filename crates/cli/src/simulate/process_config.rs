@@ -4,10 +4,11 @@ use std::fmt::Write;
 
 use kestrel::nav::experiment::PositionAxes;
 use kestrel::nav::nalgebra::Vector3;
-use kestrel::nav::scenario::{ErrorModelKind, FadeBlock, FilterKind, Scenario};
+use kestrel::nav::scenario::{ErrorModelKind, FilterKind, Scenario};
 use kestrel::nav::{Ellipsoid, NavState};
 
 use crate::gins::{degrees_exact, invert_exact};
+use crate::process::filter_params::{filter_params, Param};
 use crate::process::units::{deg_per_h, deg_per_sqrt_h, m_s_per_sqrt_h, ppm, ug};
 
 /// `x` in a unit whose conversion to SI is `to_si` (by the factor `per`),
@@ -35,69 +36,27 @@ fn earth_name(e: &Ellipsoid) -> &'static str {
     }
 }
 
-fn fade_name(b: FadeBlock) -> &'static str {
-    match b {
-        FadeBlock::All => "all",
-        FadeBlock::VelocityPosition => "velocity-position",
-        FadeBlock::AttitudeVelocityPosition => "attitude-velocity-position",
-    }
-}
-
 /// The `[filter]` lines of `kind` (`None` if `process` does not run it).
 fn filter_lines(kind: &FilterKind) -> Option<String> {
-    Some(match *kind {
-        FilterKind::Standard => "kind = \"ekf\"\n".into(),
-        FilterKind::IctErekf { significance } => {
-            format!("kind = \"ict-erekf\"\nsignificance = {}\n", f(significance))
-        }
-        FilterKind::SageHusaFading {
-            forgetting,
-            reserve,
-            lambda_max,
-            fade_states,
-        } => format!(
-            "kind = \"sage-husa-fading\"\nforgetting = {}\nreserve = {}\nlambda_max = {}\n\
-             fade_states = \"{}\"\n",
-            f(forgetting),
-            f(reserve),
-            f(lambda_max),
-            fade_name(fade_states)
-        ),
-        FilterKind::ImprovedAdaptive {
-            forgetting,
-            reserve,
-            lambda_max,
-            significance,
-            fade_states,
-        } => format!(
-            "kind = \"improved-adaptive\"\nforgetting = {}\nreserve = {}\nlambda_max = {}\n\
-             significance = {}\nfade_states = \"{}\"\n",
-            f(forgetting),
-            f(reserve),
-            f(lambda_max),
-            f(significance),
-            fade_name(fade_states)
-        ),
-        FilterKind::StrongTrackingFading {
-            rho,
-            softening,
-            lambda_max,
-            fade_states,
-        } => format!(
-            "kind = \"fading\"\nrho = {}\nsoftening = {}\nlambda_max = {}\nfade_states = \"{}\"\n",
-            f(rho),
-            f(softening),
-            f(lambda_max),
-            fade_name(fade_states)
-        ),
-        FilterKind::MaxThreshold { threshold } => {
-            format!("kind = \"max-threshold\"\nthreshold = {}\n", f(threshold))
-        }
-        FilterKind::FuzzyAdaptive { window } => {
-            format!("kind = \"fuzzy-adaptive\"\nwindow = {window}\n")
-        }
+    let name = match kind {
+        FilterKind::Standard => "ekf",
+        FilterKind::IctErekf { .. } => "ict-erekf",
+        FilterKind::SageHusaFading { .. } => "sage-husa-fading",
+        FilterKind::ImprovedAdaptive { .. } => "improved-adaptive",
+        FilterKind::StrongTrackingFading { .. } => "fading",
+        FilterKind::MaxThreshold { .. } => "max-threshold",
+        FilterKind::FuzzyAdaptive { .. } => "fuzzy-adaptive",
         FilterKind::FederatedUkf { .. } | FilterKind::FederatedSrUkf { .. } => return None,
-    })
+    };
+    let mut lines = format!("kind = \"{name}\"\n");
+    for p in filter_params(kind) {
+        let _ = match p {
+            Param::Number(key, v) => writeln!(lines, "{key} = {}", f(v)),
+            Param::Window(n) => writeln!(lines, "window = {n}"),
+            Param::Fade(states) => writeln!(lines, "fade_states = \"{}\"", states.name()),
+        };
+    }
+    Some(lines)
 }
 
 /// The configuration text for `scenario` starting from `start` (the

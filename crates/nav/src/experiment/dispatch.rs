@@ -1,100 +1,103 @@
 //! From the runtime [`FilterKind`] to the concrete filter types: a `match`
-//! whose every arm calls the generic [`Job::run`] once.
+//! whose every arm calls a generic loop once ([`build_filter`] for the
+//! engine filters, shared with loops over other data sources; the
+//! federated filters run their own loop).
 
 use kestrel_adaptive::{HuberInflation, ImprovedAdaptive, SageHusaFading, StrongTracking};
+use kestrel_core::adapter::{NoiseAdapter, PriorAdapter};
 use kestrel_core::form::{FadeStates, SquareRootForm, UnscentedForm};
 use kestrel_core::sigma::MerweParams;
 use kestrel_core::{Ekf, FilterError, SrUkf, Ukf};
 use nalgebra::{SMatrix, SVector};
 
 use super::aiding::{
-    AttitudeVelocityPosition, GnssNoise, GnssPositionVelocity, OdometerAiding, OdometerProcessing,
-    Unprocessed,
+    AttitudeVelocityPosition, GnssAiding, GnssNoise, GnssPositionVelocity, OdometerAiding,
+    OdometerProcessing,
 };
 use super::error::RunError;
 use super::federated::federated;
-use super::record::EpochRecord;
+use super::record::{Describe, EpochRecord};
 use super::run::Job;
 use super::summary::RunSummary;
 use crate::engine::{Ins15, Ins18};
 use crate::measurement::{GnssAntenna, Odometer};
 use crate::odometer::{FuzzyOdometer, InsOdometer16, MaxThreshold, ScaleFactorProcess};
 use crate::scenario::{
-    ErrorModelKind, FadeBlock, FilterKind, FilterSetup, MeasurementKind, Scenario,
+    ErrorModelKind, FadeBlock, FilterKind, FilterSetup, InitialUncertainty, MeasurementKind,
+    Scenario,
 };
 
-/// A GNSS-aided filter with adapter `$a6` (m = 6) or `$a9` (m = 9, the
-/// attitude measurement), each a `Result<_, FilterError>`, on the 15- or
-/// 18-state model.
-macro_rules! gnss_filter {
-    ($job:ident, $a6:expr, $a9:expr) => {
-        gnss_filter!($job, FadeBlock::All, $a6, $a9)
-    };
-    ($job:ident, $fade:expr, $a6:expr, $a9:expr) => {{
-        let sc = $job.scenario;
-        let s = &sc.filter;
-        match (s.error_model, s.measurement) {
-            (ErrorModelKind::Ins15, MeasurementKind::GnssPositionVelocity) => {
-                let f = ekf::<15, _>(&$job, s, $a6, $fade)?;
-                let g = gnss_pv(&$job)?;
-                $job.run(Ins15::new(s.imu_model), f, g)
-            }
-            (ErrorModelKind::Ins18, MeasurementKind::GnssPositionVelocity) => {
-                let f = ekf::<18, _>(&$job, s, $a6, $fade)?;
-                let g = gnss_pv(&$job)?;
-                $job.run(Ins18::new(s.imu_model), f, g)
-            }
-            (ErrorModelKind::Ins15, MeasurementKind::AttitudeVelocityPosition) => {
-                let f = ekf::<15, _>(&$job, s, $a9, $fade)?;
-                let g = avp(&$job)?;
-                $job.run(Ins15::new(s.imu_model), f, g)
-            }
-            (ErrorModelKind::Ins18, MeasurementKind::AttitudeVelocityPosition) => {
-                let f = ekf::<18, _>(&$job, s, $a9, $fade)?;
-                let g = avp(&$job)?;
-                $job.run(Ins18::new(s.imu_model), f, g)
-            }
-            _ => Err($job.incompatible(
-                "GNSS filters need the 15- or 18-state model and a GNSS measurement",
-            )),
-        }
-    }};
+/// A filter loop over some data source whose GNSS updates have `M` rows:
+/// [`build_filter`] hands it the concrete parts of a [`FilterKind`].
+pub trait FilterLoop<const M: usize> {
+    /// What running the loop returns.
+    type Output;
+    /// Whether the loop runs the 16-state odometer model
+    /// ([`FilterKind::Standard`] then runs [`odometer`](Self::odometer)
+    /// with `()`, every reading as it is).
+    fn odometer_model(&self) -> bool;
+    /// Runs the GNSS-aided closed-loop EKF with `adapter`, the fade
+    /// restricted to the `fade` states.
+    fn gnss<A>(self, adapter: A, fade: FadeBlock) -> Self::Output
+    where
+        A: PriorAdapter<f64> + NoiseAdapter<f64, M, Report: Describe>;
+    /// Runs the odometer EKF with `processing`.
+    fn odometer<P: OdometerProcessing>(self, processing: P) -> Self::Output;
 }
 
-/// Builds and runs the filter of `kind`.
-pub(crate) fn dispatch<C: FnMut(&EpochRecord)>(
-    job: Job<'_, C>,
+/// Why [`build_filter`] built no filter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BuildError {
+    /// A parameter of the kind is invalid.
+    Invalid(FilterError),
+    /// The kind does not run in an engine loop, or not with these
+    /// parameters.
+    Unsupported(&'static str),
+}
+
+/// Builds the adapter or odometer processing of `kind` and runs `run` with
+/// it: one monomorphised loop per kind.
+///
+/// # Errors
+/// [`BuildError::Invalid`] for an invalid parameter,
+/// [`BuildError::Unsupported`] for the federated kinds (they run their own
+/// loop) and fuzzy windows other than 10, 20 or 50.
+///
+/// ```
+/// use kestrel_nav::experiment::{build_filter, BuildError, FilterLoop, Describe, OdometerProcessing};
+/// use kestrel_nav::scenario::{FadeBlock, FilterKind};
+/// use kestrel_core::adapter::{NoiseAdapter, PriorAdapter};
+/// struct Name;
+/// impl FilterLoop<6> for Name {
+///     type Output = &'static str;
+///     fn odometer_model(&self) -> bool { false }
+///     fn gnss<A>(self, _: A, _: FadeBlock) -> &'static str
+///     where A: PriorAdapter<f64> + NoiseAdapter<f64, 6, Report: Describe> {
+///         core::any::type_name::<A>()
+///     }
+///     fn odometer<P: OdometerProcessing>(self, _: P) -> &'static str { "odometer" }
+/// }
+/// assert_eq!(build_filter(&FilterKind::Standard, Name), Ok("()"));
+/// let bad = FilterKind::IctErekf { significance: 2.0 };
+/// assert!(matches!(build_filter(&bad, Name), Err(BuildError::Invalid(_))));
+/// ```
+pub fn build_filter<const M: usize, L: FilterLoop<M>>(
     kind: &FilterKind,
-) -> Result<RunSummary, RunError> {
-    match *kind {
-        FilterKind::FederatedUkf { alpha, beta, kappa } => {
-            let p0 = p0_15(&job.scenario.filter);
-            let local = UnscentedForm::new(&p0)
-                .and_then(|f| f.with_params(MerweParams::new(alpha, beta, kappa)))
-                .and_then(|f| Ukf::with_form(SVector::zeros(), f));
-            federated(job, local)
-        }
-        FilterKind::FederatedSrUkf { alpha, beta, kappa } => {
-            let p0 = p0_15(&job.scenario.filter);
-            let local = SquareRootForm::new(&p0)
-                .and_then(|f| f.with_params(MerweParams::new(alpha, beta, kappa)))
-                .and_then(|f| SrUkf::with_form(SVector::zeros(), f));
-            federated(job, local)
-        }
-        FilterKind::Standard => match job.scenario.filter.measurement {
-            MeasurementKind::OdometerVelocity => odometer(job, Ok(Unprocessed)),
-            _ => gnss_filter!(job, Ok(()), Ok(())),
-        },
+    run: L,
+) -> Result<L::Output, BuildError> {
+    use BuildError::{Invalid, Unsupported};
+    Ok(match *kind {
+        FilterKind::Standard if run.odometer_model() => run.odometer(()),
+        FilterKind::Standard => run.gnss((), FadeBlock::All),
         FilterKind::SageHusaFading {
             forgetting,
             reserve,
             lambda_max,
             fade_states,
-        } => gnss_filter!(
-            job,
+        } => run.gnss(
+            SageHusaFading::<f64, M>::with_params(forgetting, reserve, lambda_max)
+                .map_err(Invalid)?,
             fade_states,
-            SageHusaFading::<f64, 6>::with_params(forgetting, reserve, lambda_max),
-            SageHusaFading::<f64, 9>::with_params(forgetting, reserve, lambda_max)
         ),
         FilterKind::ImprovedAdaptive {
             forgetting,
@@ -102,42 +105,119 @@ pub(crate) fn dispatch<C: FnMut(&EpochRecord)>(
             lambda_max,
             significance,
             fade_states,
-        } => gnss_filter!(
-            job,
+        } => run.gnss(
+            ImprovedAdaptive::<f64, M>::with_params(forgetting, significance, reserve, lambda_max)
+                .map_err(Invalid)?,
             fade_states,
-            ImprovedAdaptive::<f64, 6>::with_params(forgetting, significance, reserve, lambda_max),
-            ImprovedAdaptive::<f64, 9>::with_params(forgetting, significance, reserve, lambda_max)
         ),
-        FilterKind::IctErekf { significance } => gnss_filter!(
-            job,
-            HuberInflation::<f64, 6>::new(significance),
-            HuberInflation::<f64, 9>::new(significance)
+        FilterKind::IctErekf { significance } => run.gnss(
+            HuberInflation::<f64, M>::new(significance).map_err(Invalid)?,
+            FadeBlock::All,
         ),
         FilterKind::StrongTrackingFading {
             rho,
             softening,
             lambda_max,
             fade_states,
-        } => gnss_filter!(
-            job,
+        } => run.gnss(
+            StrongTracking::new(rho, softening)
+                .and_then(|s| s.with_max_fade(lambda_max))
+                .map_err(Invalid)?,
             fade_states,
-            StrongTracking::new(rho, softening).and_then(|s| s.with_max_fade(lambda_max)),
-            StrongTracking::new(rho, softening).and_then(|s| s.with_max_fade(lambda_max))
         ),
-        FilterKind::MaxThreshold { threshold } => {
-            odometer(job, Ok(MaxThreshold::<f64>::new(threshold)))
-        }
+        FilterKind::MaxThreshold { threshold } => run.odometer(MaxThreshold::<f64>::new(threshold)),
         // The window is a compile-time length (no allocation in the update).
         FilterKind::FuzzyAdaptive { window } => match window {
-            10 => odometer(job, FuzzyOdometer::<f64, 10>::paper003()),
-            20 => odometer(job, FuzzyOdometer::<f64, 20>::paper003()),
-            50 => odometer(job, FuzzyOdometer::<f64, 50>::paper003()),
-            _ => Err(RunError::Unsupported {
-                filter: job.label,
-                reason: "fuzzy R windows of 10, 20 or 50 innovations only",
-            }),
+            10 => run.odometer(FuzzyOdometer::<f64, 10>::paper003().map_err(Invalid)?),
+            20 => run.odometer(FuzzyOdometer::<f64, 20>::paper003().map_err(Invalid)?),
+            50 => run.odometer(FuzzyOdometer::<f64, 50>::paper003().map_err(Invalid)?),
+            _ => {
+                return Err(Unsupported(
+                    "fuzzy R windows of 10, 20 or 50 innovations only",
+                ))
+            }
         },
+        FilterKind::FederatedUkf { .. } | FilterKind::FederatedSrUkf { .. } => {
+            return Err(Unsupported("the federated filters run their own loop"))
+        }
+    })
+}
+
+/// The closed-loop error-state EKF of `N` states: zero error state, P0 the
+/// squares of `p0`'s σ for `model`, `adapter`, the fade restricted to the
+/// `fade` states.
+///
+/// # Errors
+/// [`FilterError::InvalidParameter`] if `model` does not have `N` states;
+/// the filter's error for an invalid P0.
+///
+/// ```
+/// use kestrel_nav::experiment::closed_loop_ekf;
+/// use kestrel_nav::scenario::{ErrorModelKind, FadeBlock, InitialUncertainty};
+/// let p0 = InitialUncertainty::default();
+/// let f = closed_loop_ekf::<15, ()>(&p0, ErrorModelKind::Ins15, (), FadeBlock::All).unwrap();
+/// assert_eq!(f.covariance().nrows(), 15);
+/// assert!(closed_loop_ekf::<18, ()>(&p0, ErrorModelKind::Ins15, (), FadeBlock::All).is_err());
+/// ```
+pub fn closed_loop_ekf<const N: usize, A>(
+    p0: &InitialUncertainty,
+    model: ErrorModelKind,
+    adapter: A,
+    fade: FadeBlock,
+) -> Result<Ekf<f64, N, A>, FilterError> {
+    let std = p0.std_vector(model);
+    if std.len() != N {
+        return Err(FilterError::InvalidParameter {
+            name: "P0 does not match the error model",
+        });
     }
+    let p0 =
+        SMatrix::<f64, N, N>::from_diagonal(&SVector::from_iterator(std.iter().map(|s| s * s)));
+    let mut filter = Ekf::new(SVector::zeros(), p0)?.with_adapter(adapter);
+    filter
+        .form_mut()
+        .set_fade_states(FadeStates::range(fade.states(N)));
+    Ok(filter)
+}
+
+/// Builds and runs the filter of `kind`.
+pub(crate) fn dispatch<C: FnMut(&EpochRecord)>(
+    job: Job<'_, C>,
+    kind: &FilterKind,
+) -> Result<RunSummary, RunError> {
+    let label = job.label;
+    let built = match *kind {
+        FilterKind::FederatedUkf { alpha, beta, kappa } => {
+            let p0 = p0_15(&job.scenario.filter);
+            let local = UnscentedForm::new(&p0)
+                .and_then(|f| f.with_params(MerweParams::new(alpha, beta, kappa)))
+                .and_then(|f| Ukf::with_form(SVector::zeros(), f));
+            return federated(job, local);
+        }
+        FilterKind::FederatedSrUkf { alpha, beta, kappa } => {
+            let p0 = p0_15(&job.scenario.filter);
+            let local = SquareRootForm::new(&p0)
+                .and_then(|f| f.with_params(MerweParams::new(alpha, beta, kappa)))
+                .and_then(|f| SrUkf::with_form(SVector::zeros(), f));
+            return federated(job, local);
+        }
+        _ if job.scenario.filter.measurement == MeasurementKind::AttitudeVelocityPosition => {
+            build_filter::<9, _>(kind, Scenario9(job))
+        }
+        _ => build_filter::<6, _>(kind, Scenario6(job)),
+    };
+    built.unwrap_or_else(|e| {
+        Err(match e {
+            BuildError::Invalid(error) => RunError::InvalidParameter {
+                filter: label,
+                error,
+            },
+            BuildError::Unsupported(reason) => RunError::Unsupported {
+                filter: label,
+                reason,
+            },
+        })
+    })
 }
 
 /// The scenario's P0 as a 15-state covariance (zero if the model differs;
@@ -151,62 +231,130 @@ fn p0_15(setup: &FilterSetup) -> SMatrix<f64, 15, 15> {
     p
 }
 
-/// The closed-loop EKF of `N` states with P0 from the setup, `adapter`,
-/// and fades restricted to `fade`.
-fn ekf<const N: usize, A>(
-    job: &Job<'_, impl FnMut(&EpochRecord)>,
-    setup: &FilterSetup,
-    adapter: Result<A, FilterError>,
-    fade: FadeBlock,
-) -> Result<Ekf<f64, N, A>, RunError> {
-    let invalid = |error| RunError::InvalidParameter {
-        filter: job.label,
-        error,
-    };
-    let adapter = adapter.map_err(invalid)?;
-    let std = setup.p0.std_vector(setup.error_model);
-    if std.len() != N {
-        return Err(job.incompatible("P0 does not match the error model"));
+/// A scenario run whose GNSS updates are position and velocity (m = 6).
+struct Scenario6<'a, C>(Job<'a, C>);
+
+/// A scenario run whose GNSS updates add the attitude (m = 9).
+struct Scenario9<'a, C>(Job<'a, C>);
+
+impl<C: FnMut(&EpochRecord)> FilterLoop<6> for Scenario6<'_, C> {
+    type Output = Result<RunSummary, RunError>;
+
+    fn odometer_model(&self) -> bool {
+        self.0.scenario.filter.measurement == MeasurementKind::OdometerVelocity
     }
-    let p0 =
-        SMatrix::<f64, N, N>::from_diagonal(&SVector::from_iterator(std.iter().map(|s| s * s)));
-    let mut filter = Ekf::new(SVector::zeros(), p0)
-        .map_err(invalid)?
-        .with_adapter(adapter);
-    filter
-        .form_mut()
-        .set_fade_states(FadeStates::range(fade.states(N)));
-    Ok(filter)
+
+    fn gnss<A>(self, adapter: A, fade: FadeBlock) -> Self::Output
+    where
+        A: PriorAdapter<f64> + NoiseAdapter<f64, 6, Report: Describe>,
+    {
+        let job = self.0;
+        let s = &job.scenario.filter;
+        if s.measurement != MeasurementKind::GnssPositionVelocity {
+            return Err(gnss_incompatible(&job));
+        }
+        match s.error_model {
+            ErrorModelKind::Ins15 => {
+                let f = ekf::<15, _>(&job, adapter, fade)?;
+                let g = GnssPositionVelocity(gnss_aiding(&job)?);
+                job.run(Ins15::new(s.imu_model), f, g)
+            }
+            ErrorModelKind::Ins18 => {
+                let f = ekf::<18, _>(&job, adapter, fade)?;
+                let g = GnssPositionVelocity(gnss_aiding(&job)?);
+                job.run(Ins18::new(s.imu_model), f, g)
+            }
+            ErrorModelKind::Odometer16 { .. } => Err(gnss_incompatible(&job)),
+        }
+    }
+
+    fn odometer<P: OdometerProcessing>(self, processing: P) -> Self::Output {
+        odometer(self.0, processing)
+    }
 }
 
-/// The filter's GNSS `R`, if the scenario has a receiver and the setup an R.
-fn gnss_noise(job: &Job<'_, impl FnMut(&EpochRecord)>) -> Result<GnssNoise, RunError> {
-    let r = &job.scenario.filter.r;
-    match (&job.scenario.gnss, r.position, r.velocity) {
-        (Some(_), Some(pos), Some(vel)) => Ok(GnssNoise { pos, vel }),
+impl<C: FnMut(&EpochRecord)> FilterLoop<9> for Scenario9<'_, C> {
+    type Output = Result<RunSummary, RunError>;
+
+    fn odometer_model(&self) -> bool {
+        false
+    }
+
+    fn gnss<A>(self, adapter: A, fade: FadeBlock) -> Self::Output
+    where
+        A: PriorAdapter<f64> + NoiseAdapter<f64, 9, Report: Describe>,
+    {
+        let job = self.0;
+        let s = &job.scenario.filter;
+        match s.error_model {
+            ErrorModelKind::Ins15 => {
+                let f = ekf::<15, _>(&job, adapter, fade)?;
+                let g = attitude_aiding(&job)?;
+                job.run(Ins15::new(s.imu_model), f, g)
+            }
+            ErrorModelKind::Ins18 => {
+                let f = ekf::<18, _>(&job, adapter, fade)?;
+                let g = attitude_aiding(&job)?;
+                job.run(Ins18::new(s.imu_model), f, g)
+            }
+            ErrorModelKind::Odometer16 { .. } => Err(gnss_incompatible(&job)),
+        }
+    }
+
+    fn odometer<P: OdometerProcessing>(self, _: P) -> Self::Output {
+        Err(odometer_incompatible(&self.0))
+    }
+}
+
+fn gnss_incompatible(job: &Job<'_, impl FnMut(&EpochRecord)>) -> RunError {
+    job.incompatible("GNSS filters need the 15- or 18-state model and a GNSS measurement")
+}
+
+fn odometer_incompatible(job: &Job<'_, impl FnMut(&EpochRecord)>) -> RunError {
+    job.incompatible("odometer filters need the 16-state odometer model")
+}
+
+/// The closed-loop EKF of `N` states with P0 from the scenario.
+fn ekf<const N: usize, A>(
+    job: &Job<'_, impl FnMut(&EpochRecord)>,
+    adapter: A,
+    fade: FadeBlock,
+) -> Result<Ekf<f64, N, A>, RunError> {
+    let s = &job.scenario.filter;
+    if s.p0.std_vector(s.error_model).len() != N {
+        return Err(job.incompatible("P0 does not match the error model"));
+    }
+    closed_loop_ekf(&s.p0, s.error_model, adapter, fade).map_err(|error| {
+        RunError::InvalidParameter {
+            filter: job.label,
+            error,
+        }
+    })
+}
+
+/// The GNSS aiding: the setup's lever arm and GNSS `R`, if the scenario
+/// has a receiver and the setup an R.
+fn gnss_aiding(job: &Job<'_, impl FnMut(&EpochRecord)>) -> Result<GnssAiding, RunError> {
+    let s = &job.scenario.filter;
+    match (&job.scenario.gnss, s.r.position, s.r.velocity) {
+        (Some(_), Some(position), Some(velocity)) => Ok(GnssAiding {
+            antenna: GnssAntenna::new(s.lever_arm),
+            noise: GnssNoise::Fixed { position, velocity },
+        }),
         _ => Err(job.incompatible("no GNSS receiver or no GNSS position and velocity R")),
     }
 }
 
-fn antenna(job: &Job<'_, impl FnMut(&EpochRecord)>) -> GnssAntenna {
-    GnssAntenna::new(job.scenario.filter.lever_arm)
-}
-
-fn gnss_pv(job: &Job<'_, impl FnMut(&EpochRecord)>) -> Result<GnssPositionVelocity, RunError> {
-    Ok(GnssPositionVelocity {
-        antenna: antenna(job),
-        noise: gnss_noise(job)?,
-    })
-}
-
-fn avp(job: &Job<'_, impl FnMut(&EpochRecord)>) -> Result<AttitudeVelocityPosition, RunError> {
+/// The GNSS aiding with the attitude reference and its `R`.
+fn attitude_aiding(
+    job: &Job<'_, impl FnMut(&EpochRecord)>,
+) -> Result<AttitudeVelocityPosition, RunError> {
     let (Some(_), Some(attitude_std)) = (&job.scenario.attitude, job.scenario.filter.r.attitude)
     else {
         return Err(job.incompatible("no attitude reference or no attitude R"));
     };
     Ok(AttitudeVelocityPosition {
-        antenna: antenna(job),
-        noise: gnss_noise(job)?,
+        gnss: gnss_aiding(job)?,
         attitude_std,
     })
 }
@@ -220,28 +368,24 @@ fn avp(job: &Job<'_, impl FnMut(&EpochRecord)>) -> Result<AttitudeVelocityPositi
 /// speed row and east for both constraint rows.
 fn odometer<C: FnMut(&EpochRecord), P: OdometerProcessing>(
     job: Job<'_, C>,
-    processing: Result<P, FilterError>,
+    processing: P,
 ) -> Result<RunSummary, RunError> {
     let sc: &Scenario = job.scenario;
     let s = &sc.filter;
     let (ErrorModelKind::Odometer16 { scale_tau }, MeasurementKind::OdometerVelocity) =
         (s.error_model, s.measurement)
     else {
-        return Err(job.incompatible("odometer filters need the 16-state odometer model"));
+        return Err(odometer_incompatible(&job));
     };
     let (Some(config), Some(r)) = (&sc.odometer, s.r.odometer) else {
         return Err(job.incompatible("no odometer or no odometer R"));
     };
-    let processing = processing.map_err(|error| RunError::InvalidParameter {
-        filter: job.label,
-        error,
-    })?;
     let [pitch, yaw] = s.odometer_mounting;
     let aiding = OdometerAiding {
         odometer: Odometer::new(r.x, r.y).with_mounting(pitch, yaw),
         processing,
     };
     let scale = ScaleFactorProcess::new(scale_tau, config.scale_markov_sigma, s.p0.odometer_scale);
-    let filter = ekf::<16, _>(&job, s, Ok(()), FadeBlock::All)?;
+    let filter = ekf::<16, _>(&job, (), FadeBlock::All)?;
     job.run(InsOdometer16::new(s.imu_model, scale), filter, aiding)
 }

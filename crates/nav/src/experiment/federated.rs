@@ -8,23 +8,28 @@
 //! nonlinearity stays in the mechanisation); the sigma-point form still
 //! matters numerically (the scenario's α = 10⁻³ makes `W₀` strongly
 //! negative), which is what the UKF / SR-UKF comparison is about.
+//!
+//! One loop serves the runner (`f64`, natural units) and the precision
+//! study (`f32` or `f64`, error states scaled by a diagonal `D`): the
+//! models are built in `f64`, scaled, and rounded to the filter's type.
 
 use kestrel_adaptive::federated::{FederatedFilter, PredictSet, Sharing};
 use kestrel_core::form::UpdateForm;
-use kestrel_core::{Ekf, Filter, FilterError};
+use kestrel_core::real::lit;
+use kestrel_core::{Ekf, Filter, FilterError, Quantity, Real};
+use kestrel_models::LinearProcess;
 use nalgebra::{SMatrix, SVector, Vector3};
 
 use super::data::Digest;
 use super::error::RunError;
-use super::options::PositionAxes;
 use super::record::{Adaptation, EpochRecord};
 use super::run::Job;
-use super::summary::{Accumulator, RunSummary};
+use super::summary::RunSummary;
 use crate::engine::{feed_back, ErrorSystem, Ins15, SensorCorrections};
-use crate::error_model::{ErrorModel15, ForcingMean};
+use crate::error_model::ForcingMean;
 use crate::measurement::{ErrorMeasurement, GnssAntenna, InsContext};
 use crate::mechanisation::Strapdown;
-use crate::scenario::{ErrorModelKind, MeasurementKind};
+use crate::scenario::{ErrorModelKind, MeasurementKind, Scenario};
 
 /// Runs the federated filter whose velocity local is `local` (its state
 /// and covariance are reset to the scenario's P0 by the federation).
@@ -35,7 +40,39 @@ pub(crate) fn federated<C, F>(
 where
     C: FnMut(&EpochRecord),
     F: UpdateForm<f64, 15, ErrorMeasurement<f64, 15, 3>, 3>,
-    (Ekf<f64, 15>, Filter<f64, 15, F>): for<'m> PredictSet<'m, f64, 15, 2, ErrorModel15>,
+    (Ekf<f64, 15>, Filter<f64, 15, F>): for<'m> PredictSet<'m, f64, 15, 2, LinearProcess<f64, 15>>,
+{
+    let natural = SVector::repeat(1.0);
+    let p0 = scaled_p0(job.scenario, &natural);
+    let (summary, outcome) = federated_scaled(job, local, &p0, &natural)?;
+    outcome.map(|()| summary)
+}
+
+/// The scenario's P0 of the 15 error states scaled by `d`:
+/// `diag((σᵢ dᵢ)²)`.
+pub(crate) fn scaled_p0(scenario: &Scenario, d: &SVector<f64, 15>) -> SMatrix<f64, 15, 15> {
+    let s = &scenario.filter;
+    let std = s.p0.std_vector(s.error_model);
+    SMatrix::from_diagonal(&SVector::from_iterator(
+        std.iter().zip(d.iter()).map(|(v, k)| (v * k).powi(2)),
+    ))
+}
+
+/// The federated loop in type `T` on the error states `x' = D x`
+/// (`d` = the diagonal of `D`, `p0` already scaled). Errors before the
+/// first sample are returned as such; a failure during the run ends it and
+/// comes with the summary so far.
+pub(crate) fn federated_scaled<T, F, C>(
+    job: Job<'_, C>,
+    local: Result<Filter<T, 15, F>, FilterError>,
+    p0: &SMatrix<f64, 15, 15>,
+    d: &SVector<f64, 15>,
+) -> Result<(RunSummary, Result<(), RunError>), RunError>
+where
+    T: Real,
+    F: UpdateForm<T, 15, ErrorMeasurement<T, 15, 3>, 3>,
+    C: FnMut(&EpochRecord),
+    (Ekf<T, 15>, Filter<T, 15, F>): for<'m> PredictSet<'m, T, 15, 2, LinearProcess<T, 15>>,
 {
     let label = job.label;
     let sc = job.scenario;
@@ -54,20 +91,28 @@ where
         filter: label,
         error,
     };
-    let std = s.p0.std_vector(s.error_model);
-    let p0 =
-        SMatrix::<f64, 15, 15>::from_diagonal(&SVector::from_iterator(std.iter().map(|v| v * v)));
-    let x0 = SVector::<f64, 15>::zeros();
+    let x0 = SVector::<T, 15>::zeros();
+    let p0t = p0.map(lit::<T>);
+    let locals = (Ekf::new(x0, p0t).map_err(invalid)?, local.map_err(invalid)?);
     let start = job.sim.initial_truth();
-    let fusion = |time, error| RunError::Fusion {
-        filter: label,
-        time,
-        error,
+    let mut fed = match FederatedFilter::new(locals, Sharing::edop(), x0, p0t) {
+        Ok(f) => f,
+        Err(error) => {
+            let e = RunError::Fusion {
+                filter: label,
+                time: start.time,
+                error,
+            };
+            let nothing = job
+                .accumulator()
+                .finish(label, start.time, Digest::default().value());
+            return Ok((nothing, Err(e)));
+        }
     };
-    let locals = (Ekf::new(x0, p0).map_err(invalid)?, local.map_err(invalid)?);
-    let mut fed =
-        FederatedFilter::new(locals, Sharing::edop(), x0, p0).map_err(|e| fusion(start.time, e))?;
 
+    let inv = d.map(|v| 1.0 / v);
+    let dd = SMatrix::<f64, 15, 15>::from_diagonal(d);
+    let di = SMatrix::<f64, 15, 15>::from_diagonal(&inv);
     let earth = sc.earth;
     let system = Ins15::new(s.imu_model);
     let antenna = GnssAntenna::new(s.lever_arm);
@@ -75,19 +120,14 @@ where
     let mut corrections = SensorCorrections::default();
     let mut forcing = ForcingMean::default();
     let mut omega_ib = Vector3::zeros();
-    let axes = job
-        .options
-        .axes
-        .unwrap_or_else(|| PositionAxes::for_scenario(&sc.name));
-    let mut acc = Accumulator::new(axes, job.options.rms_from);
-    let mut digest = Digest::default();
-    let mut end = start.time;
     let interval = job.options.covariance_interval;
-    let on_epoch = job.on_epoch;
-    for sample in job.sim {
-        digest.add(&sample);
+    Ok(job.drive(|sample| {
         let time = sample.truth.time;
-        end = time;
+        let fusion = |error| RunError::Fusion {
+            filter: label,
+            time,
+            error,
+        };
         let failed = |error| RunError::Filter {
             filter: label,
             time,
@@ -106,44 +146,57 @@ where
         // Propagate per interval, and up to the sample before an update.
         if forcing.dt() > 0.0 && (forcing.dt() >= interval - 1e-9 || fix.is_some()) {
             let model = system.process(&earth, ins.state(), &forcing);
-            fed.predict(&model, forcing.dt())
-                .map_err(|e| fusion(time, e))?;
+            let phi = dd * model.phi() * di;
+            let q = dd * model.qd() * dd;
+            let scaled = LinearProcess::new(phi.map(lit::<T>), q.map(lit::<T>));
+            fed.predict(&scaled, lit(forcing.dt())).map_err(fusion)?;
             forcing.clear();
         }
         let Some(fix) = fix else {
-            continue;
+            return Ok(None);
         };
         let ctx = InsContext::new(earth, *ins.state(), omega_ib);
-        let pos = antenna.position::<f64, 15, _>(&system, &ctx, &fix);
         let pv = antenna.position_velocity::<f64, 15, _>(&system, &ctx, &fix);
-        let vel = ErrorMeasurement::<f64, 15, 3>::new(
-            pv.z().fixed_rows::<3>(3).into_owned(),
-            pv.h().fixed_rows::<3>(3).into_owned(),
-            pv.noise_covariance()
-                .diagonal()
-                .fixed_rows::<3>(3)
-                .into_owned(),
+        let h = pv.h() * di;
+        let z = pv.z();
+        let r = pv.noise_covariance().diagonal();
+        let pos = ErrorMeasurement::<T, 15, 3>::new(
+            z.fixed_rows::<3>(0).into_owned(),
+            h.fixed_rows::<3>(0).into_owned(),
+            r.fixed_rows::<3>(0).into_owned(),
+        );
+        let vel = ErrorMeasurement::<T, 15, 3>::new(
+            z.fixed_rows::<3>(3).into_owned(),
+            h.fixed_rows::<3>(3).into_owned(),
+            r.fixed_rows::<3>(3).into_owned(),
         );
         let r0 = fed.locals_mut().0.update(&pos, &pos.z()).map_err(failed)?;
-        fed.record(0, &r0).map_err(|e| fusion(time, e))?;
+        fed.record(0, &r0).map_err(fusion)?;
         let r1 = fed.locals_mut().1.update(&vel, &vel.z()).map_err(failed)?;
-        fed.record(1, &r1).map_err(|e| fusion(time, e))?;
-        fed.fuse().map_err(|e| fusion(time, e))?;
-        // Closed loop: feed the fused estimate back, zero every local.
-        let dx = *fed.state();
+        fed.record(1, &r1).map_err(fusion)?;
+        fed.fuse().map_err(fusion)?;
+        // Closed loop: feed the fused estimate back (in f64, natural
+        // units), zero every local.
+        let dx = fed.state().map(to_f64).component_mul(&inv);
+        if let Some(index) = dx.iter().position(|v| !v.is_finite()) {
+            return Err(failed(FilterError::NonFinite {
+                what: Quantity::UpdatedEstimate,
+                index,
+            }));
+        }
         feed_back::<f64, 15, Ins15>(&dx, &earth, ins.state_mut(), &mut corrections);
         fed.locals_mut().0.set_state(x0).map_err(failed)?;
         fed.locals_mut().1.set_state(x0).map_err(failed)?;
-
         let adaptation = Adaptation {
-            nis: r0.nis + r1.nis,
+            nis: to_f64(r0.nis + r1.nis),
             rejected: r0.rejected && r1.rejected,
-            noise_trace: r0.noise.trace() + r1.noise.trace(),
+            noise_trace: to_f64(r0.noise.trace() + r1.noise.trace()),
             ..Adaptation::default()
         };
-        let record = EpochRecord::measure(&earth, ins.state(), &sample.truth, adaptation, label)?;
-        acc.add(&record);
-        on_epoch(&record);
-    }
-    Ok(acc.finish(label, end, digest.value()))
+        Ok(Some((*ins.state(), adaptation)))
+    }))
+}
+
+fn to_f64<T: Real>(v: T) -> f64 {
+    nalgebra::try_convert(v).unwrap_or(f64::NAN)
 }

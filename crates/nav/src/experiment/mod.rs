@@ -12,6 +12,14 @@
 //! per axis). [`run_with`] streams the records to a callback instead of
 //! storing them.
 //!
+//! The building blocks are public for loops over other data sources
+//! (recorded files): [`build_filter`] turns a kind into its adapter or
+//! odometer processing for a [`FilterLoop`], [`closed_loop_ekf`] builds
+//! the filter, [`GnssAiding`] and [`OdometerAiding`] are the update steps
+//! on any [`AidedEngine`], and [`Adaptation::from_report`] reads what the
+//! adapters did ([`Describe`]), so such a loop computes exactly what the
+//! in-memory runner computes.
+//!
 //! Design choices:
 //! - Identical data: the sensors draw only from the seed and the truth,
 //!   never from the filter, so every filter kind of a scenario sees the
@@ -54,13 +62,15 @@ mod record;
 mod run;
 mod summary;
 
+pub use aiding::{AidedEngine, GnssAiding, GnssNoise, OdometerAiding, OdometerProcessing};
 pub use data::{SensorSample, Simulation};
+pub use dispatch::{build_filter, closed_loop_ekf, BuildError, FilterLoop};
 pub use error::RunError;
 pub use options::{PositionAxes, RunOptions};
 pub use precision::{
     compare_federated_precision, MaxDifference, Outcome, Precision, PrecisionOptions,
     PrecisionReport, PrecisionRun, PrecisionSetup, StateScaling,
 };
-pub use record::{Adaptation, EpochRecord};
+pub use record::{Adaptation, Describe, EpochRecord};
 pub use run::{run, run_with, RunResult};
 pub use summary::RunSummary;

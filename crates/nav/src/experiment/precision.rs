@@ -20,24 +20,20 @@
 
 use core::fmt;
 
-use kestrel_adaptive::federated::{FederatedFilter, PredictSet, Sharing};
-use kestrel_core::form::{SquareRootForm, UnscentedForm, UpdateForm};
+use kestrel_core::form::{SquareRootForm, UnscentedForm};
 use kestrel_core::real::lit;
 use kestrel_core::sigma::MerweParams;
-use kestrel_core::{Ekf, Filter, FilterError, Real, SrUkf, Ukf};
-use kestrel_models::LinearProcess;
-use nalgebra::{SMatrix, SVector, Vector3};
+use kestrel_core::{FilterError, Real, SrUkf, Ukf};
+use nalgebra::{SMatrix, SVector};
 
-use super::data::{Digest, Simulation};
+use super::data::Simulation;
 use super::error::RunError;
-use super::options::{PositionAxes, RunOptions};
-use super::record::{Adaptation, EpochRecord};
-use super::summary::{Accumulator, RunSummary};
-use crate::engine::{feed_back, ErrorSystem, Ins15, SensorCorrections};
-use crate::error_model::ForcingMean;
-use crate::measurement::{ErrorMeasurement, GnssAntenna, InsContext};
-use crate::mechanisation::Strapdown;
-use crate::scenario::{ErrorModelKind, FilterKind, MeasurementKind, Scenario};
+use super::federated::{federated_scaled, scaled_p0};
+use super::options::RunOptions;
+use super::record::EpochRecord;
+use super::run::Job;
+use super::summary::RunSummary;
+use crate::scenario::{FilterKind, Scenario};
 
 /// The floating-point type of the error-state filters.
 ///
@@ -510,247 +506,56 @@ fn run_setup<C: FnMut(&EpochRecord)>(
     seed: u64,
     options: &RunOptions,
     setup: &PrecisionSetup,
-    on_epoch: C,
+    mut on_epoch: C,
 ) -> Result<(RunSummary, Outcome), RunError> {
     let sim = Simulation::new(scenario, seed, options)?;
-    let label = kind.label();
+    let d = setup.scaling.vector();
+    let p0 = scaled_p0(scenario, &d);
+    let job = Job {
+        label: kind.label(),
+        scenario,
+        sim,
+        options,
+        on_epoch: &mut on_epoch,
+    };
+    let (summary, outcome) = match setup.precision {
+        Precision::F64 => run_in::<f64, _>(job, kind, &p0, &d),
+        Precision::F32 => run_in::<f32, _>(job, kind, &p0, &d),
+    }?;
+    let outcome = match outcome {
+        Ok(()) => Outcome::Completed,
+        Err(e) => Outcome::Failed(e),
+    };
+    Ok((summary, outcome))
+}
+
+/// The federated loop with the UKF or SR-UKF local of `kind` in type `T`.
+fn run_in<T: Real, C: FnMut(&EpochRecord)>(
+    job: Job<'_, C>,
+    kind: &FilterKind,
+    p0: &SMatrix<f64, 15, 15>,
+    d: &SVector<f64, 15>,
+) -> Result<(RunSummary, Result<(), RunError>), RunError> {
+    let label = job.label;
     let invalid = |error| RunError::InvalidParameter {
         filter: label,
         error,
     };
-    let d = setup.scaling.vector();
-    let s = &scenario.filter;
-    let std = s.p0.std_vector(s.error_model);
-    let p0 = SMatrix::<f64, 15, 15>::from_diagonal(&SVector::from_iterator(
-        std.iter().zip(d.iter()).map(|(v, k)| (v * k).powi(2)),
-    ));
-    let ctx = Context {
-        scenario,
-        sim,
-        options,
-        label,
-        d,
-    };
-    match (setup.precision, *kind) {
-        (Precision::F64, FilterKind::FederatedUkf { alpha, beta, kappa }) => {
-            let local = ukf::<f64>(&p0, alpha, beta, kappa).map_err(invalid)?;
-            ctx.run(local, &p0, on_epoch)
+    let p0t = p0.map(lit::<T>);
+    let params = |a: f64, b: f64, k: f64| MerweParams::new(lit(a), lit(b), lit(k));
+    match *kind {
+        FilterKind::FederatedUkf { alpha, beta, kappa } => {
+            let local = UnscentedForm::new(&p0t)
+                .and_then(|f| f.with_params(params(alpha, beta, kappa)))
+                .and_then(|f| Ukf::with_form(SVector::zeros(), f));
+            federated_scaled(job, Ok(local.map_err(invalid)?), p0, d)
         }
-        (Precision::F64, FilterKind::FederatedSrUkf { alpha, beta, kappa }) => {
-            let local = srukf::<f64>(&p0, alpha, beta, kappa).map_err(invalid)?;
-            ctx.run(local, &p0, on_epoch)
+        FilterKind::FederatedSrUkf { alpha, beta, kappa } => {
+            let local = SquareRootForm::new(&p0t)
+                .and_then(|f| f.with_params(params(alpha, beta, kappa)))
+                .and_then(|f| SrUkf::with_form(SVector::zeros(), f));
+            federated_scaled(job, Ok(local.map_err(invalid)?), p0, d)
         }
-        (Precision::F32, FilterKind::FederatedUkf { alpha, beta, kappa }) => {
-            let local = ukf::<f32>(&p0, alpha, beta, kappa).map_err(invalid)?;
-            ctx.run(local, &p0, on_epoch)
-        }
-        (Precision::F32, FilterKind::FederatedSrUkf { alpha, beta, kappa }) => {
-            let local = srukf::<f32>(&p0, alpha, beta, kappa).map_err(invalid)?;
-            ctx.run(local, &p0, on_epoch)
-        }
-        _ => Err(RunError::Incompatible {
-            filter: label,
-            reason: "not a federated UKF or SR-UKF",
-        }),
+        _ => Err(job.incompatible("not a federated UKF or SR-UKF")),
     }
-}
-
-fn ukf<T: Real>(
-    p0: &SMatrix<f64, 15, 15>,
-    alpha: f64,
-    beta: f64,
-    kappa: f64,
-) -> Result<Ukf<T, 15>, FilterError> {
-    let params = MerweParams::new(lit(alpha), lit(beta), lit(kappa));
-    UnscentedForm::new(&p0.map(lit::<T>))
-        .and_then(|f| f.with_params(params))
-        .and_then(|f| Ukf::with_form(SVector::zeros(), f))
-}
-
-fn srukf<T: Real>(
-    p0: &SMatrix<f64, 15, 15>,
-    alpha: f64,
-    beta: f64,
-    kappa: f64,
-) -> Result<SrUkf<T, 15>, FilterError> {
-    let params = MerweParams::new(lit(alpha), lit(beta), lit(kappa));
-    SquareRootForm::new(&p0.map(lit::<T>))
-        .and_then(|f| f.with_params(params))
-        .and_then(|f| SrUkf::with_form(SVector::zeros(), f))
-}
-
-/// What a run needs besides the filter.
-struct Context<'a> {
-    scenario: &'a Scenario,
-    sim: Simulation,
-    options: &'a RunOptions,
-    label: &'static str,
-    /// The state scaling `D` (diagonal).
-    d: SVector<f64, 15>,
-}
-
-impl Context<'_> {
-    /// The federated loop of the experiment runner in type `T`, with the
-    /// scaled models; a failure ends the run and is returned as the
-    /// outcome with the summary so far.
-    fn run<T, F, C>(
-        self,
-        local: Filter<T, 15, F>,
-        p0: &SMatrix<f64, 15, 15>,
-        mut on_epoch: C,
-    ) -> Result<(RunSummary, Outcome), RunError>
-    where
-        T: Real,
-        F: UpdateForm<T, 15, ErrorMeasurement<T, 15, 3>, 3>,
-        C: FnMut(&EpochRecord),
-        (Ekf<T, 15>, Filter<T, 15, F>): for<'m> PredictSet<'m, T, 15, 2, LinearProcess<T, 15>>,
-    {
-        let (sc, label, d) = (self.scenario, self.label, self.d);
-        let s = &sc.filter;
-        if (s.error_model, s.measurement)
-            != (ErrorModelKind::Ins15, MeasurementKind::GnssPositionVelocity)
-        {
-            return Err(RunError::Incompatible {
-                filter: label,
-                reason:
-                    "the federated filter needs the 15-state model and GNSS position and velocity",
-            });
-        }
-        let (Some(_), Some(pos_std), Some(vel_std)) = (&sc.gnss, s.r.position, s.r.velocity) else {
-            return Err(RunError::Incompatible {
-                filter: label,
-                reason: "no GNSS receiver or no GNSS R",
-            });
-        };
-        let inv = d.map(|v| 1.0 / v);
-        let start = self.sim.initial_truth();
-        let axes = self
-            .options
-            .axes
-            .unwrap_or_else(|| PositionAxes::for_scenario(&sc.name));
-        let mut acc = Accumulator::new(axes, self.options.rms_from);
-        let mut digest = Digest::default();
-        let mut end = start.time;
-        let x0 = SVector::<T, 15>::zeros();
-        let p0t = p0.map(lit::<T>);
-        let ekf = Ekf::new(x0, p0t).map_err(|error| RunError::InvalidParameter {
-            filter: label,
-            error,
-        })?;
-        let mut fed = match FederatedFilter::new((ekf, local), Sharing::edop(), x0, p0t) {
-            Ok(f) => f,
-            Err(error) => {
-                let e = RunError::Fusion {
-                    filter: label,
-                    time: start.time,
-                    error,
-                };
-                return Ok((acc.finish(label, end, digest.value()), Outcome::Failed(e)));
-            }
-        };
-        let earth = sc.earth;
-        let system = Ins15::new(s.imu_model);
-        let antenna = GnssAntenna::new(s.lever_arm);
-        let mut ins = Strapdown::new(earth, sc.initial_state(&start));
-        let mut corrections = SensorCorrections::default();
-        let mut forcing = ForcingMean::default();
-        let mut omega_ib = Vector3::zeros();
-        let dd = SMatrix::<f64, 15, 15>::from_diagonal(&d);
-        let di = SMatrix::<f64, 15, 15>::from_diagonal(&inv);
-        for sample in self.sim {
-            digest.add(&sample);
-            let time = sample.truth.time;
-            end = time;
-            let fusion = |error| RunError::Fusion {
-                filter: label,
-                time,
-                error,
-            };
-            let failed = |error| RunError::Filter {
-                filter: label,
-                time,
-                error,
-            };
-            let inc = corrections.imu.compensate(&sample.imu);
-            ins.step(&inc);
-            if inc.dt > 0.0 {
-                omega_ib = inc.dtheta / inc.dt;
-            }
-            forcing.add(&ins, inc.dt);
-            let fix = sample
-                .gnss
-                .map(|g| g.value.with_std(pos_std, vel_std))
-                .filter(|f| f.vel.is_some());
-            let step = (|| {
-                if forcing.dt() > 0.0
-                    && (forcing.dt() >= self.options.covariance_interval - 1e-9 || fix.is_some())
-                {
-                    let model = system.process(&earth, ins.state(), &forcing);
-                    let phi = dd * model.phi() * di;
-                    let q = dd * model.qd() * dd;
-                    let scaled = LinearProcess::new(phi.map(lit::<T>), q.map(lit::<T>));
-                    fed.predict(&scaled, lit(forcing.dt())).map_err(fusion)?;
-                    forcing.clear();
-                }
-                let Some(fix) = fix else {
-                    return Ok(None);
-                };
-                let ctx = InsContext::new(earth, *ins.state(), omega_ib);
-                let pv = antenna.position_velocity::<f64, 15, _>(&system, &ctx, &fix);
-                let h = pv.h() * di;
-                let z = pv.z();
-                let r = pv.noise_covariance().diagonal();
-                let pos = ErrorMeasurement::<T, 15, 3>::new(
-                    z.fixed_rows::<3>(0).into_owned(),
-                    h.fixed_rows::<3>(0).into_owned(),
-                    r.fixed_rows::<3>(0).into_owned(),
-                );
-                let vel = ErrorMeasurement::<T, 15, 3>::new(
-                    z.fixed_rows::<3>(3).into_owned(),
-                    h.fixed_rows::<3>(3).into_owned(),
-                    r.fixed_rows::<3>(3).into_owned(),
-                );
-                let r0 = fed.locals_mut().0.update(&pos, &pos.z()).map_err(failed)?;
-                fed.record(0, &r0).map_err(fusion)?;
-                let r1 = fed.locals_mut().1.update(&vel, &vel.z()).map_err(failed)?;
-                fed.record(1, &r1).map_err(fusion)?;
-                fed.fuse().map_err(fusion)?;
-                let dx = fed.state().map(to_f64).component_mul(&inv);
-                if dx.iter().any(|v| !v.is_finite()) {
-                    return Err(failed(FilterError::NonFinite {
-                        what: kestrel_core::Quantity::UpdatedEstimate,
-                        index: dx.iter().position(|v| !v.is_finite()).unwrap_or(0),
-                    }));
-                }
-                feed_back::<f64, 15, Ins15>(&dx, &earth, ins.state_mut(), &mut corrections);
-                fed.locals_mut().0.set_state(x0).map_err(failed)?;
-                fed.locals_mut().1.set_state(x0).map_err(failed)?;
-                Ok(Some(Adaptation {
-                    nis: to_f64(r0.nis + r1.nis),
-                    rejected: r0.rejected && r1.rejected,
-                    noise_trace: to_f64(r0.noise.trace() + r1.noise.trace()),
-                    ..Adaptation::default()
-                }))
-            })();
-            let adaptation = match step {
-                Ok(Some(a)) => a,
-                Ok(None) => continue,
-                Err(e) => return Ok((acc.finish(label, end, digest.value()), Outcome::Failed(e))),
-            };
-            let record =
-                match EpochRecord::measure(&earth, ins.state(), &sample.truth, adaptation, label) {
-                    Ok(r) => r,
-                    Err(e) => {
-                        return Ok((acc.finish(label, end, digest.value()), Outcome::Failed(e)))
-                    }
-                };
-            acc.add(&record);
-            on_epoch(&record);
-        }
-        Ok((acc.finish(label, end, digest.value()), Outcome::Completed))
-    }
-}
-
-fn to_f64<T: Real>(v: T) -> f64 {
-    nalgebra::try_convert(v).unwrap_or(f64::NAN)
 }

@@ -55,8 +55,21 @@ impl Default for Adaptation {
 }
 
 impl Adaptation {
-    /// From an update report and its adapters' reports.
-    pub(crate) fn from_report<const M: usize, R: Describe>(r: &UpdateReport<f64, M, R>) -> Self {
+    /// From an update report and its adapters' reports (what each adapter
+    /// did, through [`Describe`]).
+    ///
+    /// ```
+    /// use kestrel_core::{Ekf, nalgebra::{SMatrix, Vector1}};
+    /// use kestrel_models::{LinearMeasurement, LinearProcess};
+    /// use kestrel_nav::experiment::Adaptation;
+    /// let mut f = Ekf::<f64, 1>::new(Vector1::zeros(), SMatrix::identity()).unwrap();
+    /// let h = LinearMeasurement::new(SMatrix::identity(), SMatrix::identity() * 3.0);
+    /// let r = f.update(&h, &Vector1::new(2.0)).unwrap();
+    /// let a = Adaptation::from_report(&r);
+    /// // innovation 2, S = P + R = 4: NIS = 1; no adapter, so no fade.
+    /// assert_eq!((a.nis, a.fade, a.noise_trace), (1.0, 1.0, 3.0));
+    /// ```
+    pub fn from_report<const M: usize, R: Describe>(r: &UpdateReport<f64, M, R>) -> Self {
         let mut a = Self {
             nis: r.nis,
             rejected: r.rejected,
@@ -131,8 +144,17 @@ impl EpochRecord {
     }
 }
 
-/// Adapter reports that say what they did.
-pub(crate) trait Describe {
+/// Adapter reports that say what they did, for [`Adaptation::from_report`]
+/// (implemented by the reports of the adapters the experiments use, and
+/// pairs of them).
+///
+/// ```
+/// use kestrel_nav::experiment::{Adaptation, Describe};
+/// let mut a = Adaptation::default();
+/// ((), ()).describe(&mut a);
+/// assert_eq!(a, Adaptation::default());
+/// ```
+pub trait Describe {
     /// Writes what this report knows into `a`.
     fn describe(&self, a: &mut Adaptation);
 }

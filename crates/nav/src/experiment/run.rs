@@ -5,16 +5,17 @@ use kestrel_core::form::{Form, PredictForm};
 use kestrel_core::Filter;
 
 use super::aiding::Aiding;
-use super::data::{Digest, Simulation};
+use super::data::{Digest, SensorSample, Simulation};
 use super::dispatch::dispatch;
 use super::error::RunError;
 use super::options::{PositionAxes, RunOptions};
-use super::record::EpochRecord;
+use super::record::{Adaptation, EpochRecord};
 use super::summary::{Accumulator, RunSummary};
 use crate::engine::{ErrorSystem, LooselyCoupled};
 use crate::measurement::GnssAntenna;
 use crate::mechanisation::Strapdown;
 use crate::scenario::{FilterKind, Scenario};
+use crate::state::NavState;
 
 /// The outcome of [`run`]: the summary and, if
 /// [`RunOptions::keep_records`], every aiding epoch.
@@ -136,41 +137,70 @@ impl<C: FnMut(&EpochRecord)> Job<'_, C> {
         G: Aiding<N, S, F, A>,
     {
         let sc = self.scenario;
-        let earth = sc.earth;
         let start = self.sim.initial_truth();
         let mut engine = LooselyCoupled::new(
-            Strapdown::new(earth, sc.initial_state(&start)),
+            Strapdown::new(sc.earth, sc.initial_state(&start)),
             filter,
             system,
             GnssAntenna::new(sc.filter.lever_arm),
             self.options.covariance_interval,
         );
-        let axes = self
-            .options
-            .axes
-            .unwrap_or_else(|| PositionAxes::for_scenario(&sc.name));
-        let mut acc = Accumulator::new(axes, self.options.rms_from);
-        let mut digest = Digest::default();
-        let mut end = start.time;
         let label = self.label;
-        for sample in self.sim {
-            digest.add(&sample);
-            let time = sample.truth.time;
-            end = time;
+        let (summary, outcome) = self.drive(|sample| {
             let fail = |error| RunError::Filter {
                 filter: label,
-                time,
+                time: sample.truth.time,
                 error,
             };
             engine.imu(&sample.imu).map_err(fail)?;
-            let Some(adaptation) = aiding.update(&mut engine, &sample).map_err(fail)? else {
-                continue;
-            };
-            let record =
-                EpochRecord::measure(&earth, engine.solution(), &sample.truth, adaptation, label)?;
-            acc.add(&record);
-            (self.on_epoch)(&record);
+            let adaptation = aiding.update(&mut engine, sample).map_err(fail)?;
+            Ok(adaptation.map(|a| (*engine.solution(), a)))
+        });
+        outcome.map(|()| summary)
+    }
+
+    /// The RMS accumulator of this run's options.
+    pub(crate) fn accumulator(&self) -> Accumulator {
+        let axes = self
+            .options
+            .axes
+            .unwrap_or_else(|| PositionAxes::for_scenario(&self.scenario.name));
+        Accumulator::new(axes, self.options.rms_from)
+    }
+
+    /// The loop every runner shares: hands each sample to `step`, which
+    /// returns the navigation solution and adaptation of an aiding epoch
+    /// (`None` between aidings), and measures, accumulates and reports
+    /// each epoch. The first failure ends the run; the summary covers the
+    /// samples up to it.
+    pub(crate) fn drive<P>(self, mut step: P) -> (RunSummary, Result<(), RunError>)
+    where
+        P: FnMut(&SensorSample) -> Result<Option<(NavState, Adaptation)>, RunError>,
+    {
+        let sc = self.scenario;
+        let mut acc = self.accumulator();
+        let mut digest = Digest::default();
+        let mut end = self.sim.initial_truth().time;
+        let label = self.label;
+        for sample in self.sim {
+            digest.add(&sample);
+            end = sample.truth.time;
+            let epoch = step(&sample).and_then(|solved| {
+                solved
+                    .map(|(nav, adaptation)| {
+                        EpochRecord::measure(&sc.earth, &nav, &sample.truth, adaptation, label)
+                    })
+                    .transpose()
+            });
+            match epoch {
+                Ok(Some(record)) => {
+                    acc.add(&record);
+                    (self.on_epoch)(&record);
+                }
+                Ok(None) => {}
+                Err(e) => return (acc.finish(label, end, digest.value()), Err(e)),
+            }
         }
-        Ok(acc.finish(label, end, digest.value()))
+        (acc.finish(label, end, digest.value()), Ok(()))
     }
 }

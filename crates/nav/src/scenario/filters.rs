@@ -125,6 +125,32 @@ impl FadeBlock {
         };
         range.start.min(n)..range.end.min(n)
     }
+
+    /// The name configuration files use for the block.
+    ///
+    /// ```
+    /// use kestrel_nav::scenario::FadeBlock;
+    /// assert_eq!(FadeBlock::VelocityPosition.name(), "velocity-position");
+    /// assert_eq!(FadeBlock::from_name("all"), Some(FadeBlock::All));
+    /// ```
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::All => "all",
+            Self::VelocityPosition => "velocity-position",
+            Self::AttitudeVelocityPosition => "attitude-velocity-position",
+        }
+    }
+
+    /// The block named `name` (as [`name`](Self::name) writes it).
+    pub fn from_name(name: &str) -> Option<Self> {
+        [
+            Self::All,
+            Self::VelocityPosition,
+            Self::AttitudeVelocityPosition,
+        ]
+        .into_iter()
+        .find(|b| b.name() == name)
+    }
 }
 
 impl FilterKind {

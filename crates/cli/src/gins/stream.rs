@@ -1,0 +1,125 @@
+//! What every reader does with a data line before it is a record: the
+//! column count of the first data line kept, increasing times, checks
+//! whose errors name the file, line and column, and the end after an
+//! error.
+
+use std::io::BufRead;
+use std::path::Path;
+
+use super::line::{Fields, Lines};
+use crate::InputError;
+
+/// The data lines of one file with the state every reader keeps.
+#[derive(Debug)]
+pub(crate) struct Stream<R> {
+    lines: Lines<R>,
+    columns: Option<usize>,
+    previous: Option<(f64, usize)>,
+    failed: bool,
+}
+
+impl<R: BufRead> Stream<R> {
+    /// A stream over `lines`.
+    pub(crate) fn new(lines: Lines<R>) -> Self {
+        Self {
+            lines,
+            columns: None,
+            previous: None,
+            failed: false,
+        }
+    }
+
+    /// The file's name for errors.
+    pub(crate) fn path(&self) -> &Path {
+        self.lines.path()
+    }
+
+    /// The next data line turned into a record by `parse`; `None` at the
+    /// end of the file and after the first error (a reader stops there).
+    pub(crate) fn next<T>(
+        &mut self,
+        parse: impl FnOnce(&mut Self, &Fields) -> Result<T, InputError>,
+    ) -> Option<Result<T, InputError>> {
+        if self.failed {
+            return None;
+        }
+        let r = self.fields().map(|f| f.and_then(|f| parse(&mut *self, &f)));
+        self.failed = matches!(r, Some(Err(_)));
+        r
+    }
+
+    /// The next data line, with the column count of the first one.
+    fn fields(&mut self) -> Option<Result<Fields, InputError>> {
+        let f = match self.lines.next_fields()? {
+            Ok(f) => f,
+            Err(e) => return Some(Err(e)),
+        };
+        match self.columns {
+            None => self.columns = Some(f.count),
+            Some(c) if c != f.count => {
+                return Some(Err(self.at(
+                    &f,
+                    c.min(f.count) + 1,
+                    format!(
+                        "expected {c} columns like the first data line, found {}",
+                        f.count
+                    ),
+                )))
+            }
+            Some(_) => {}
+        }
+        Some(Ok(f))
+    }
+
+    /// The error `message` at `column` (1-based) of the line of `f`.
+    pub(crate) fn at(&self, f: &Fields, column: usize, message: String) -> InputError {
+        InputError::at(self.path(), f.line, column, message)
+    }
+
+    /// Takes `time` as the latest time, returning the previous time and
+    /// its line, if any; `Err` with them when `time` is not after them.
+    pub(crate) fn advance(
+        &mut self,
+        time: f64,
+        f: &Fields,
+    ) -> Result<Option<(f64, usize)>, (f64, usize)> {
+        match self.previous {
+            Some((t0, l0)) if time <= t0 => Err((t0, l0)),
+            previous => {
+                self.previous = Some((time, f.line));
+                Ok(previous)
+            }
+        }
+    }
+
+    /// [`advance`](Self::advance) for a time in seconds of week in column 1.
+    pub(crate) fn advance_seconds(
+        &mut self,
+        f: &Fields,
+    ) -> Result<Option<(f64, usize)>, InputError> {
+        let time = f.get(0);
+        self.advance(time, f).map_err(|(t0, l0)| {
+            self.at(
+                f,
+                1,
+                format!(
+                    "time does not increase: {time} s after {t0} s at line {l0} \
+                     (expected increasing seconds of week)"
+                ),
+            )
+        })
+    }
+
+    /// Checks the latitude in degrees of column `i` (0-based).
+    pub(crate) fn latitude(&self, f: &Fields, i: usize) -> Result<(), InputError> {
+        let lat = f.get(i);
+        if lat.abs() > 90.0 {
+            return Err(self.at(
+                f,
+                i + 1,
+                format!("expected a latitude in [-90, 90] deg, found {lat}"),
+            ));
+        }
+        Ok(())
+    }
+}
