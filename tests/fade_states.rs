@@ -5,6 +5,8 @@
 //! predict with and without the split; the square-root form with both time
 //! updates), f32, and no heap call.
 
+mod common;
+
 use std::hint::black_box;
 
 use kestrel::adapter::{GainStep, NoiseAdapter, PriorAdapter, PriorStep};
@@ -13,7 +15,7 @@ use kestrel::form::{
     UpdateForm,
 };
 use kestrel::models::{LinearMeasurement, LinearProcess};
-use kestrel::nalgebra::{Matrix1, Matrix1x2, Matrix2, Matrix2x4, Matrix4, SVector, Vector1};
+use kestrel::nalgebra::{Matrix1, Matrix1x2, Matrix2, Matrix4, SVector, Vector1};
 use kestrel::nalgebra::{Vector2, Vector4};
 use kestrel::real::lit;
 use kestrel::{Ekf, Filter, Real, SrUkf, Ukf};
@@ -217,17 +219,7 @@ impl SetStates for SquareRootForm<f64, 4> {
 /// Constant velocity in two axes, observed in position (the block the
 /// fade selects) with correlated `R`.
 fn cv_models<T: Real>() -> (LinearProcess<T, 4>, LinearMeasurement<T, 4, 2>) {
-    let phi = Matrix4::new(
-        1.0, 0.0, 0.1, 0.0, //
-        0.0, 1.0, 0.0, 0.1, //
-        0.0, 0.0, 1.0, 0.0, //
-        0.0, 0.0, 0.0, 1.0,
-    );
-    let h = Matrix2x4::new(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0);
-    (
-        LinearProcess::new(phi.cast(), (Matrix4::identity() * 0.01).cast()),
-        LinearMeasurement::new(h.cast(), Matrix2::new(0.25, 0.05, 0.05, 0.5).cast()),
-    )
+    common::constant_velocity(Matrix2::new(0.25, 0.05, 0.05, 0.5))
 }
 
 fn x0<T: Real>() -> Vector4<T> {

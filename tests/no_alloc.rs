@@ -10,12 +10,14 @@
 //! threads (output capture, other tests) cannot disturb a count; a positive
 //! control shows an allocation made while armed is counted.
 
+mod common;
+
 use std::hint::black_box;
 
 use kestrel::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use kestrel::form::{PredictForm, SquareRootForm, TimeUpdate, UpdateForm};
 use kestrel::models::{LinearMeasurement, LinearProcess};
-use kestrel::nalgebra::{Matrix2, Matrix2x4, Matrix4, SVector, Vector2, Vector4};
+use kestrel::nalgebra::{Matrix2, Matrix4, SVector, Vector2, Vector4};
 use kestrel::real::lit;
 use kestrel::{Ekf, Filter, FilterError, Real, SrUkf, Ukf};
 use kestrel_testkit::{heap_calls, CountingAllocator};
@@ -108,17 +110,7 @@ fn positive_control_counts_allocations_made_inside_a_filter_step() {
 
 /// A 4-state constant-velocity model observed in position, diagonal `R`.
 fn models<T: Real>() -> (LinearProcess<T, 4>, LinearMeasurement<T, 4, 2>) {
-    let phi = Matrix4::new(
-        1.0, 0.0, 0.1, 0.0, //
-        0.0, 1.0, 0.0, 0.1, //
-        0.0, 0.0, 1.0, 0.0, //
-        0.0, 0.0, 0.0, 1.0,
-    );
-    let h = Matrix2x4::new(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0);
-    (
-        LinearProcess::new(phi.cast(), (Matrix4::identity() * 0.01).cast()),
-        LinearMeasurement::new(h.cast(), Matrix2::new(0.25, 0.0, 0.0, 0.5).cast()),
-    )
+    common::constant_velocity(Matrix2::new(0.25, 0.0, 0.0, 0.5))
 }
 
 /// What an armed run did.

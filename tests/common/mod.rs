@@ -4,7 +4,8 @@
 #![allow(dead_code)]
 
 use kestrel::models::{LinearMeasurement, LinearProcess};
-use kestrel::nalgebra::{SMatrix, SVector};
+use kestrel::nalgebra::{Matrix2, Matrix2x4, Matrix4, SMatrix, SVector};
+use kestrel::Real;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
@@ -270,3 +271,21 @@ macro_rules! dispatch {
 }
 #[allow(unused_imports)]
 pub(crate) use dispatch;
+
+/// Constant velocity in two axes (state: position x, y, velocity x, y;
+/// Δt = 0.1 s, `Q = 0.01 I`) observed in position with noise `r`.
+pub fn constant_velocity<T: Real>(
+    r: Matrix2<f64>,
+) -> (LinearProcess<T, 4>, LinearMeasurement<T, 4, 2>) {
+    let phi = Matrix4::new(
+        1.0, 0.0, 0.1, 0.0, //
+        0.0, 1.0, 0.0, 0.1, //
+        0.0, 0.0, 1.0, 0.0, //
+        0.0, 0.0, 0.0, 1.0,
+    );
+    let h = Matrix2x4::new(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0);
+    (
+        LinearProcess::new(phi.cast(), (Matrix4::identity() * 0.01).cast()),
+        LinearMeasurement::new(h.cast(), r.cast()),
+    )
+}
