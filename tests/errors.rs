@@ -151,8 +151,18 @@ macro_rules! each_unscented_form {
     }};
 }
 
+/// A non-finite element of a vector.
 fn non_finite(what: Quantity, index: usize) -> FilterError {
-    FilterError::NonFinite { what, index }
+    FilterError::NonFinite {
+        what,
+        row: index,
+        col: 0,
+    }
+}
+
+/// A non-finite entry of a matrix.
+fn non_finite_at(what: Quantity, row: usize, col: usize) -> FilterError {
+    FilterError::NonFinite { what, row, col }
 }
 
 fn not_pd(what: Quantity, index: usize) -> FilterError {
@@ -201,10 +211,9 @@ fn non_finite_measurement() {
 fn non_finite_measurement_noise() {
     each_form!(X0, p0(), |name, f| {
         f.predict(&cv(), 1.0).unwrap();
-        // Column-major index 3 is R₂₂.
         let bad =
             LinearMeasurement::new(Matrix2::identity(), Matrix2::new(1.0, 0.0, 0.0, f64::NAN));
-        let want = non_finite(Quantity::MeasurementNoise, 3);
+        let want = non_finite_at(Quantity::MeasurementNoise, 1, 1);
         update_fails(name, &mut f, &bad, &Vector2::new(1.0, 2.0), want);
     });
 }
@@ -260,7 +269,7 @@ fn non_finite_predicted_measurement() {
         update_fails(name, &mut f, &NanSensor, &Vector1::new(1.0), want);
     });
     let mut f = Ekf::new(X0, p0()).unwrap();
-    let want = non_finite(Quantity::PredictedMeasurement, 1);
+    let want = non_finite_at(Quantity::MeasurementJacobian, 0, 1);
     update_fails("ekf", &mut f, &NanJacobian, &Vector1::new(1.0), want);
     // x₀ = 1 and P₀₀ = 4: the sigma points reach 1 − 2√2 < 0.
     each_unscented_form!(X0, p0(), |name, f| {
@@ -317,16 +326,16 @@ fn non_finite_propagation() {
     each_form!(X0, p0(), |name, f| {
         // Once from a posterior, once with a prediction already pending.
         for _ in 0..2 {
-            let want = non_finite(Quantity::Propagation, 1);
+            let want = non_finite(Quantity::PropagatedState, 1);
             predict_fails(name, &mut f, &NanProcess, want);
             f.predict(&cv(), 1.0).unwrap();
         }
     });
     let mut f = Ekf::new(X0, p0()).unwrap();
-    let want = non_finite(Quantity::Propagation, 2);
+    let want = non_finite_at(Quantity::Transition, 0, 1);
     predict_fails("ekf", &mut f, &NanTransition, want);
     each_unscented_form!(X0, p0(), |name, f| {
-        let want = non_finite(Quantity::Propagation, 0);
+        let want = non_finite(Quantity::PropagatedState, 0);
         predict_fails(name, &mut f, &SqrtProcess, want);
     });
 }
@@ -335,9 +344,8 @@ fn non_finite_propagation() {
 fn non_finite_process_noise() {
     each_form!(X0, p0(), |name, f| {
         let bad = LinearProcess::new(Matrix2::identity(), Matrix2::new(1.0, f64::NAN, 0.0, 1.0));
-        // Column-major index 2 is Q₀₁; only the lower triangle is mirrored
-        // later, the check sees the matrix as given.
-        let want = non_finite(Quantity::ProcessNoise, 2);
+        // The check sees the matrix as the model returned it.
+        let want = non_finite_at(Quantity::ProcessNoise, 0, 1);
         predict_fails(name, &mut f, &bad, want);
     });
 }
@@ -347,7 +355,7 @@ fn overflowing_propagated_covariance() {
     // Φ = 10²⁰⁰ I keeps the state finite but Φ P Φᵀ overflows. (The
     // square-root form only carries the factor, ~10²⁰⁰, so it is not refused.)
     let huge = LinearProcess::new(Matrix2::identity() * 1e200, Matrix2::identity());
-    let want = non_finite(Quantity::StateCovariance, 0);
+    let want = non_finite_at(Quantity::PropagatedCovariance, 0, 0);
     let mut f = Ekf::new(X0, p0()).unwrap();
     predict_fails("ekf", &mut f, &huge, want);
     let mut f = Ukf::new(X0, p0()).unwrap();
@@ -355,18 +363,14 @@ fn overflowing_propagated_covariance() {
 }
 
 #[test]
-fn non_psd_process_noise_square_root() {
+fn non_psd_process_noise() {
     // [1 2; 2 1] has eigenvalues 3 and −1: the second pivot is 1 − 4 < 0.
     let bad = LinearProcess::new(Matrix2::identity(), Matrix2::new(1.0, 2.0, 2.0, 1.0));
-    let mut f = SrUkf::new(X0, p0()).unwrap();
-    predict_fails("sr-ukf", &mut f, &bad, not_pd(Quantity::ProcessNoise, 1));
-    f.predict(&cv(), 1.0).unwrap();
-    predict_fails(
-        "sr-ukf pending",
-        &mut f,
-        &bad,
-        not_pd(Quantity::ProcessNoise, 1),
-    );
+    each_form!(X0, p0(), |name, f| {
+        predict_fails(name, &mut f, &bad, not_pd(Quantity::ProcessNoise, 1));
+        f.predict(&cv(), 1.0).unwrap();
+        predict_fails(name, &mut f, &bad, not_pd(Quantity::ProcessNoise, 1));
+    });
 }
 
 /// Random walk with `Q = diag(0, 1)`: the first component never gains
@@ -501,17 +505,19 @@ fn square_root_downdate_failures() {
 #[test]
 fn construction_and_setters_refuse_bad_input() {
     let nan_p = Matrix2::new(1.0, 0.0, f64::NAN, 1.0);
-    let want = non_finite(Quantity::StateCovariance, 1);
+    let want = non_finite_at(Quantity::StateCovariance, 1, 0);
     assert_eq!(Ekf::new(X0, nan_p).err(), Some(want));
     assert_eq!(Ukf::new(X0, nan_p).err(), Some(want));
     assert_eq!(SrUkf::new(X0, nan_p).err(), Some(want));
     let nan_x = Vector2::new(0.0, f64::NAN);
-    let want = non_finite(Quantity::UpdatedEstimate, 1);
+    let want = non_finite(Quantity::State, 1);
     assert_eq!(Ekf::new(nan_x, p0()).err(), Some(want));
     assert_eq!(Ukf::new(nan_x, p0()).err(), Some(want));
     assert_eq!(SrUkf::new(nan_x, p0()).err(), Some(want));
     let indefinite = Matrix2::new(1.0, 2.0, 2.0, 1.0);
     let want = not_pd(Quantity::StateCovariance, 1);
+    assert_eq!(Ekf::new(X0, indefinite).err(), Some(want));
+    assert_eq!(Ukf::new(X0, indefinite).err(), Some(want));
     assert_eq!(SrUkf::new(X0, indefinite).err(), Some(want));
 
     each_form!(X0, p0(), |name, f| {
@@ -522,8 +528,9 @@ fn construction_and_setters_refuse_bad_input() {
         assert_unchanged(name, &before, &f);
         still_works(name, before, &mut f);
     });
-    let mut f = SrUkf::new(X0, p0()).unwrap();
-    let before = f.clone();
-    assert_eq!(f.set_covariance(&indefinite).err(), Some(want));
-    assert_unchanged("sr-ukf", &before, &f);
+    each_form!(X0, p0(), |name, f| {
+        let before = f.clone();
+        assert_eq!(f.set_covariance(&indefinite).err(), Some(want), "{name}");
+        assert_unchanged(name, &before, &f);
+    });
 }

@@ -31,19 +31,26 @@ pub fn chi_square_quantile(probability: f64, dof: usize) -> Result<f64, FilterEr
     if !(probability > 0.0 && probability < 1.0) {
         return Err(FilterError::InvalidParameter {
             name: "probability",
+            valid: "0 < probability < 1",
         });
     }
     if dof == 0 {
-        return Err(FilterError::InvalidParameter { name: "dof" });
+        return Err(FilterError::InvalidParameter {
+            name: "dof",
+            valid: "at least 1 (the measurement dimension M)",
+        });
     }
-    let dist =
-        ChiSquared::new(dof as f64).map_err(|_| FilterError::InvalidParameter { name: "dof" })?;
+    let dist = ChiSquared::new(dof as f64).map_err(|_| FilterError::InvalidParameter {
+        name: "dof",
+        valid: "at least 1 (the measurement dimension M)",
+    })?;
     let c = dist.inverse_cdf(probability);
     if c.is_finite() && c > 0.0 {
         Ok(c)
     } else {
         Err(FilterError::InvalidParameter {
             name: "probability",
+            valid: "0 < probability < 1",
         })
     }
 }

@@ -61,7 +61,7 @@ impl<T: Real, const M: usize> ChiSquareGate<T, M> {
     /// `χ²_{1−significance}(M)`.
     ///
     /// # Errors
-    /// `InvalidParameter { name: "probability" }` for a significance
+    /// `InvalidParameter { name: "probability", valid: "0 < probability < 1" }` for a significance
     /// outside `(0, 1)`, or `"dof"` for `M = 0`.
     pub fn new(significance: f64) -> Result<Self, FilterError> {
         Ok(Self {
@@ -72,11 +72,14 @@ impl<T: Real, const M: usize> ChiSquareGate<T, M> {
     /// The gate with an explicit threshold on `νᵀ C⁻¹ ν`.
     ///
     /// # Errors
-    /// `InvalidParameter { name: "threshold" }` unless it is finite and
+    /// `InvalidParameter { name: "threshold", valid: "finite and greater than 0" }` unless it is finite and
     /// positive.
     pub fn with_threshold(threshold: T) -> Result<Self, FilterError> {
         if !(threshold.is_finite() && threshold > T::zero()) {
-            return Err(FilterError::InvalidParameter { name: "threshold" });
+            return Err(FilterError::InvalidParameter {
+                name: "threshold",
+                valid: "finite and greater than 0",
+            });
         }
         Ok(Self { threshold })
     }

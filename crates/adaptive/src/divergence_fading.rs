@@ -98,12 +98,18 @@ impl<T: Real> DivergenceFading<T> {
     /// and `≥ 1`; `"max_fade"` unless `λ_max ≥ 1` (NaN refused).
     pub fn new(reserve: T, max_fade: T) -> Result<Self, FilterError> {
         if !(reserve.is_finite() && reserve >= T::one()) {
-            return Err(FilterError::InvalidParameter { name: "reserve" });
+            return Err(FilterError::InvalidParameter {
+                name: "reserve",
+                valid: "finite and at least 1",
+            });
         }
         // Also refuses NaN.
         let valid = max_fade >= T::one();
         if !valid {
-            return Err(FilterError::InvalidParameter { name: "max_fade" });
+            return Err(FilterError::InvalidParameter {
+                name: "max_fade",
+                valid: "at least 1",
+            });
         }
         Ok(Self { reserve, max_fade })
     }

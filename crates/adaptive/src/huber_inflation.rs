@@ -134,12 +134,13 @@ impl<T: Real, const M: usize> HuberInflation<T, M> {
     /// default [`InflationShape::Congruence`].
     ///
     /// # Errors
-    /// `InvalidParameter { name: "significance" }` outside the range, or
+    /// `InvalidParameter { name: "significance", valid: "0 < significance < 1" }` outside the range, or
     /// `"dof"` for `M = 0`.
     pub fn new(significance: f64) -> Result<Self, FilterError> {
         if !(Self::MIN_SIGNIFICANCE..=Self::MAX_SIGNIFICANCE).contains(&significance) {
             return Err(FilterError::InvalidParameter {
                 name: "significance",
+                valid: "0 < significance < 1",
             });
         }
         Ok(Self {
@@ -152,7 +153,7 @@ impl<T: Real, const M: usize> HuberInflation<T, M> {
     /// The paper's configuration: significance 0.05.
     ///
     /// # Errors
-    /// `InvalidParameter { name: "dof" }` for `M = 0`.
+    /// `InvalidParameter { name: "dof", valid: "at least 1 (the measurement dimension M)" }` for `M = 0`.
     pub fn paper() -> Result<Self, FilterError> {
         Self::new(Self::PAPER_SIGNIFICANCE)
     }

@@ -91,7 +91,10 @@ impl<T: Real, const M: usize> OutlierCompression<T, M> {
     /// `"threshold"` unless `c` is finite and positive.
     pub fn with_threshold(c: T) -> Result<Self, FilterError> {
         if !(c.is_finite() && c > T::zero()) {
-            return Err(FilterError::InvalidParameter { name: "threshold" });
+            return Err(FilterError::InvalidParameter {
+                name: "threshold",
+                valid: "finite and greater than 0",
+            });
         }
         Ok(Self { threshold: c })
     }

@@ -118,7 +118,10 @@ impl<T: Real, const M: usize> SageHusa<T, M> {
     /// [`FilterError::InvalidParameter`] `"forgetting"` unless `0 < b < 1`.
     pub fn new(b: T) -> Result<Self, FilterError> {
         if !(b > T::zero() && b < T::one()) {
-            return Err(FilterError::InvalidParameter { name: "forgetting" });
+            return Err(FilterError::InvalidParameter {
+                name: "forgetting",
+                valid: "0 < b < 1",
+            });
         }
         Ok(Self::unchecked(b))
     }
@@ -151,7 +154,10 @@ impl<T: Real, const M: usize> SageHusa<T, M> {
         let mut r0 = r0;
         kestrel_core::linalg::mirror_lower(&mut r0);
         if cholesky(&r0).is_err() {
-            return Err(FilterError::InvalidParameter { name: "initial" });
+            return Err(FilterError::InvalidParameter {
+                name: "initial",
+                valid: "a finite, symmetric, positive definite matrix",
+            });
         }
         self.estimate = r0;
         self.initialized = true;
@@ -165,7 +171,10 @@ impl<T: Real, const M: usize> SageHusa<T, M> {
     /// `"floor"` if a value is negative or not finite.
     pub fn with_floor(mut self, floor: SVector<T, M>) -> Result<Self, FilterError> {
         if !floor.iter().all(|f| f.is_finite() && *f >= T::zero()) {
-            return Err(FilterError::InvalidParameter { name: "floor" });
+            return Err(FilterError::InvalidParameter {
+                name: "floor",
+                valid: "finite and non-negative in every component",
+            });
         }
         self.floor = floor;
         Ok(self)

@@ -85,10 +85,16 @@ impl<T: Real> StrongTracking<T> {
     /// `"softening"` unless `β` is finite and `≥ 1`.
     pub fn new(rho: T, softening: T) -> Result<Self, FilterError> {
         if !(rho >= T::zero() && rho <= T::one()) {
-            return Err(FilterError::InvalidParameter { name: "rho" });
+            return Err(FilterError::InvalidParameter {
+                name: "rho",
+                valid: "0 ≤ ρ ≤ 1",
+            });
         }
         if !(softening.is_finite() && softening >= T::one()) {
-            return Err(FilterError::InvalidParameter { name: "softening" });
+            return Err(FilterError::InvalidParameter {
+                name: "softening",
+                valid: "finite and at least 1",
+            });
         }
         Ok(Self {
             rho,
@@ -107,7 +113,10 @@ impl<T: Real> StrongTracking<T> {
         // Also refuses NaN.
         let valid = max_fade >= T::one();
         if !valid {
-            return Err(FilterError::InvalidParameter { name: "max_fade" });
+            return Err(FilterError::InvalidParameter {
+                name: "max_fade",
+                valid: "at least 1",
+            });
         }
         self.max_fade = max_fade;
         Ok(self)

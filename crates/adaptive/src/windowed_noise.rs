@@ -86,15 +86,19 @@ impl<T: Real, const M: usize, const W: usize> WindowedNoise<T, M, W> {
     /// of `R`; choose it well below the expected noise variance).
     ///
     /// # Errors
-    /// `InvalidParameter { name: "min_variance" }` unless it is finite and
+    /// `InvalidParameter { name: "min_variance", valid: "finite and greater than 0" }` unless it is finite and
     /// positive, `"window"` for `W = 0`.
     pub fn new(min_variance: T) -> Result<Self, FilterError> {
         if W == 0 {
-            return Err(FilterError::InvalidParameter { name: "window" });
+            return Err(FilterError::InvalidParameter {
+                name: "window",
+                valid: "at least 1 (the window length W)",
+            });
         }
         if !(min_variance.is_finite() && min_variance > T::zero()) {
             return Err(FilterError::InvalidParameter {
                 name: "min_variance",
+                valid: "finite and greater than 0",
             });
         }
         Ok(Self {

@@ -172,7 +172,10 @@ fn shared_noise_divides_only_the_noise_by_the_share() {
     for bad in [0.0, -0.5, 1.5, f64::NAN, f64::INFINITY, 1e-320] {
         assert_eq!(
             SharedNoise::new(&model, bad).unwrap_err(),
-            FilterError::InvalidParameter { name: "share" },
+            FilterError::InvalidParameter {
+                name: "share",
+                valid: "0 < share ≤ 1, with a finite reciprocal"
+            },
             "share {bad}"
         );
     }
@@ -180,7 +183,10 @@ fn shared_noise_divides_only_the_noise_by_the_share() {
 
 #[test]
 fn parameters_are_validated() {
-    let shares = FilterError::InvalidParameter { name: "shares" };
+    let shares = FilterError::InvalidParameter {
+        name: "shares",
+        valid: "L finite shares, each in (0, 1], summing to 1",
+    };
     for bad in [
         [0.5, 0.0],
         [0.5, -0.1],
@@ -199,24 +205,34 @@ fn parameters_are_validated() {
 
     assert_eq!(
         Isolation::<f64>::new(0.0, 2, 2).unwrap_err(),
-        FilterError::InvalidParameter { name: "alpha" }
+        FilterError::InvalidParameter {
+            name: "alpha",
+            valid: "0 < alpha < 1"
+        }
     );
     assert!(Isolation::<f64>::new(1.0, 2, 2).is_err());
     assert!(Isolation::<f64>::new(f64::NAN, 2, 2).is_err());
     assert_eq!(
         Isolation::<f64>::new(0.01, 0, 2).unwrap_err(),
-        FilterError::InvalidParameter { name: "fail_after" }
+        FilterError::InvalidParameter {
+            name: "fail_after",
+            valid: "at least 1"
+        }
     );
     assert_eq!(
         Isolation::<f64>::new(0.01, 2, 0).unwrap_err(),
         FilterError::InvalidParameter {
-            name: "readmit_after"
+            name: "readmit_after",
+            valid: "at least 1"
         }
     );
     let iso = Isolation::<f64>::new(0.05, 2, 2).unwrap();
     assert_eq!(
         iso.threshold(0).unwrap_err(),
-        FilterError::InvalidParameter { name: "dof" }
+        FilterError::InvalidParameter {
+            name: "dof",
+            valid: "at least 1 (the measurement dimension M)"
+        }
     );
     // χ²_{0.95}(2) = −2 ln 0.05; beyond the precomputed dimensions the
     // quantile is computed on demand: χ²_{0.95}(20) = 31.4104 (tables).
@@ -263,7 +279,12 @@ fn errors_name_the_local_and_change_nothing() {
     .with_isolation(iso);
     // A failing test is recorded, then the fusion fails on local 1.
     fed.record_nis(0, 1e3, 2).unwrap();
-    fed.locals_mut().1.set_covariance(&bad.1).unwrap();
+    // A local accepts only a positive semi-definite covariance; a singular
+    // one still cannot be inverted for the fusion (pivot 1 of [[1, 1],
+    // [1, 1]] is 0).
+    assert!(fed.locals_mut().1.set_covariance(&bad.1).is_err());
+    let singular = Matrix2::new(1.0, 1.0, 1.0, 1.0);
+    fed.locals_mut().1.set_covariance(&singular).unwrap();
     let locals_before = fed.locals().clone();
     assert_eq!(
         fed.fuse().unwrap_err(),
@@ -292,7 +313,10 @@ fn errors_name_the_local_and_change_nothing() {
         fed.record_nis(0, 1.0, 0).unwrap_err(),
         FusionError::Local {
             local: 0,
-            error: FilterError::InvalidParameter { name: "dof" }
+            error: FilterError::InvalidParameter {
+                name: "dof",
+                valid: "at least 1 (the measurement dimension M)"
+            }
         }
     ));
     let model = LinearProcess::new(Matrix2::<f64>::identity(), Matrix2::identity());

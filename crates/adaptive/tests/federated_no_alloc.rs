@@ -72,10 +72,12 @@ fn run<T: Real>(zs: &Readings<T>) -> (usize, usize) {
         }
     }
     // Error paths: a dimension beyond the precomputed thresholds, an
-    // indefinite local, everything isolated.
+    // indefinite local (refused), a singular local, everything isolated.
     fed.record_nis(1, T::one(), 20).unwrap();
     let mut bad = Matrix4::<T>::identity();
     bad[(3, 3)] = -T::one();
+    assert!(fed.locals_mut().2.set_covariance(&bad).is_err());
+    bad[(3, 3)] = T::zero();
     fed.locals_mut().2.set_covariance(&bad).unwrap();
     assert_eq!(
         fed.fuse().unwrap_err(),

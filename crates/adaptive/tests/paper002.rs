@@ -58,6 +58,7 @@ fn thresholds_are_the_chi_square_quantiles() {
     assert!((chi_square_quantile(0.95, 2).unwrap() - T2).abs() < 1e-9);
     let bad = Some(FilterError::InvalidParameter {
         name: "significance",
+        valid: "0 < significance < 1",
     });
     assert_eq!(HuberInflation::<f64, 2>::new(0.009).err(), bad);
     assert_eq!(HuberInflation::<f64, 2>::new(0.151).err(), bad);
@@ -308,12 +309,16 @@ fn gate_hand_epochs() {
     assert!(!report.rejected);
     assert_eq!(
         ChiSquareGate::<f64, 2>::with_threshold(0.0).err(),
-        Some(FilterError::InvalidParameter { name: "threshold" })
+        Some(FilterError::InvalidParameter {
+            name: "threshold",
+            valid: "finite and greater than 0"
+        })
     );
     assert_eq!(
         ChiSquareGate::<f64, 2>::new(1.0).err(),
         Some(FilterError::InvalidParameter {
-            name: "probability"
+            name: "probability",
+            valid: "0 < probability < 1"
         })
     );
 }

@@ -66,7 +66,10 @@ fn membership_degrees_by_hand() {
     assert_eq!(step.degree(0.999), 0.0);
     assert_eq!(step.max_slope(), 1.0);
 
-    let bad = Some(FilterError::InvalidParameter { name: "membership" });
+    let bad = Some(FilterError::InvalidParameter {
+        name: "membership",
+        valid: "finite break points a ≤ b ≤ c ≤ d with a < d",
+    });
     assert_eq!(Membership::triangle(1.0, 0.5, 2.0).err(), bad);
     assert_eq!(Membership::triangle(1.0, 1.0, 1.0).err(), bad);
     assert_eq!(Membership::trapezoid(0.0, 2.0, 1.0, 3.0).err(), bad);
@@ -80,7 +83,10 @@ fn variables_and_rules_are_validated() {
     let sets = InputVariable::<f64, 2>::new(&[a, a, a]);
     assert_eq!(
         sets.err(),
-        Some(FilterError::InvalidParameter { name: "sets" })
+        Some(FilterError::InvalidParameter {
+            name: "sets",
+            valid: "between 1 and the variable's capacity of sets"
+        })
     );
     assert!(InputVariable::<f64, 2>::new(&[]).is_err());
     assert!(OutputVariable::new([a], 1.0, 1.0).is_err());
@@ -88,7 +94,10 @@ fn variables_and_rules_are_validated() {
     assert_eq!(input.degree(1, 1.0), 0.0, "unused set index");
     let output = OutputVariable::new([a], 0.0, 2.0).unwrap();
     let bad_input = [Rule::new([Term::Is(1)], Consequent::Set(0))];
-    let bad = Some(FilterError::InvalidParameter { name: "rules" });
+    let bad = Some(FilterError::InvalidParameter {
+        name: "rules",
+        valid: "rules naming only sets that exist, with at least one rule",
+    });
     assert_eq!(
         Engine::new([input], output, bad_input, Defuzzifier::Centroid).err(),
         bad
@@ -455,7 +464,10 @@ fn gain_rejections_hand_epochs() {
 fn gain_parameters_and_match_factor() {
     let engine = odometer_engine::<f64>().unwrap();
     let unusable = [true, false, false, false, true];
-    let bad = Some(FilterError::InvalidParameter { name: "smoothing" });
+    let bad = Some(FilterError::InvalidParameter {
+        name: "smoothing",
+        valid: "0 < smoothing ≤ 1",
+    });
     assert_eq!(FuzzyGain::<f64, 2>::new(engine, unusable, 0.0).err(), bad);
     assert_eq!(FuzzyGain::<f64, 2>::new(engine, unusable, 1.5).err(), bad);
     assert!(FuzzyGain::<f64, 2>::new(engine, unusable, 1.0).is_ok());

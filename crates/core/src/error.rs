@@ -1,99 +1,198 @@
-//! Typed failures of predict and update.
+//! Typed failures of predict and update, in the user's terms: which
+//! quantity (the one the user supplied, or the step that produced it) and
+//! where in that object (row and column).
 
 use core::fmt;
 
+use nalgebra::SMatrix;
+
 /// The quantity an error is about.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum Quantity {
-    /// The measurement vector `z` given to `update`.
-    Measurement,
-    /// The measurement noise covariance `R` (from the model or an adapter).
-    MeasurementNoise,
-    /// The predicted measurement `h(x)` or its Jacobian.
-    PredictedMeasurement,
-    /// The process noise covariance `Q`.
-    ProcessNoise,
-    /// The propagated state `f(x)` or the transition matrix `Φ`.
-    Propagation,
-    /// The state covariance `P` (or its factor `S`).
+    /// The state given to the constructor or [`Filter::set_state`](crate::Filter::set_state).
+    State,
+    /// The state covariance `P` given to the constructor or
+    /// [`Filter::set_covariance`](crate::Filter::set_covariance), or the
+    /// filter's own covariance when the form must factor it.
     StateCovariance,
-    /// The innovation covariance `C = HPHᵀ + R`.
+    /// The time step `dt` given to `predict`.
+    TimeStep,
+    /// The process noise covariance `Q` returned by
+    /// [`ProcessModel::noise`](crate::ProcessModel::noise).
+    ProcessNoise,
+    /// The state-transition matrix `Φ` returned by
+    /// [`LinearizedProcess::transition`](crate::LinearizedProcess::transition).
+    Transition,
+    /// The propagated state `f(x, dt)` returned by
+    /// [`ProcessModel::propagate`](crate::ProcessModel::propagate) (for a
+    /// sigma point in the unscented forms).
+    PropagatedState,
+    /// The propagated covariance `Φ P Φᵀ` (overflow).
+    PropagatedCovariance,
+    /// The measurement vector `z` given to `update` (or the innovation
+    /// computed from it).
+    Measurement,
+    /// The measurement noise covariance `R` returned by
+    /// [`MeasurementModel::noise`](crate::MeasurementModel::noise) or set by
+    /// an adapter.
+    MeasurementNoise,
+    /// The predicted measurement `h(x)` returned by
+    /// [`MeasurementModel::predict`](crate::MeasurementModel::predict).
+    PredictedMeasurement,
+    /// The Jacobian `H` returned by
+    /// [`LinearizedMeasurement::jacobian`](crate::LinearizedMeasurement::jacobian).
+    MeasurementJacobian,
+    /// The innovation covariance `C = H P Hᵀ + R`.
     InnovationCovariance,
-    /// The updated state or covariance.
-    UpdatedEstimate,
+    /// The updated state.
+    UpdatedState,
+    /// The updated covariance.
+    UpdatedCovariance,
+}
+
+impl Quantity {
+    /// Whether the quantity is a vector (its errors give an index, not a row
+    /// and column).
+    pub fn is_vector(self) -> bool {
+        matches!(
+            self,
+            Quantity::State
+                | Quantity::TimeStep
+                | Quantity::PropagatedState
+                | Quantity::Measurement
+                | Quantity::PredictedMeasurement
+                | Quantity::UpdatedState
+        )
+    }
+
+    /// Whether the quantity must be positive definite (the innovation
+    /// covariance) rather than positive semi-definite (`P`, `Q`, `R`).
+    pub fn must_be_definite(self) -> bool {
+        matches!(self, Quantity::InnovationCovariance)
+    }
 }
 
 impl fmt::Display for Quantity {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
-            Quantity::Measurement => "measurement",
-            Quantity::MeasurementNoise => "measurement noise covariance",
-            Quantity::PredictedMeasurement => "predicted measurement",
-            Quantity::ProcessNoise => "process noise covariance",
-            Quantity::Propagation => "propagated state",
-            Quantity::StateCovariance => "state covariance",
+            Quantity::State => "state",
+            Quantity::StateCovariance => "state covariance P",
+            Quantity::TimeStep => "time step dt",
+            Quantity::ProcessNoise => "process noise covariance Q",
+            Quantity::Transition => "state-transition matrix",
+            Quantity::PropagatedState => "propagated state f(x, dt)",
+            Quantity::PropagatedCovariance => "propagated covariance",
+            Quantity::Measurement => "measurement z",
+            Quantity::MeasurementNoise => "measurement noise covariance R",
+            Quantity::PredictedMeasurement => "predicted measurement h(x)",
+            Quantity::MeasurementJacobian => "measurement Jacobian H",
             Quantity::InnovationCovariance => "innovation covariance",
-            Quantity::UpdatedEstimate => "updated estimate",
+            Quantity::UpdatedState => "updated state",
+            Quantity::UpdatedCovariance => "updated covariance",
         })
     }
 }
 
-/// Why a predict or update was refused. The filter state is unchanged
-/// whenever one of these is returned.
+/// Why a predict or update (or a constructor) was refused. The filter is
+/// unchanged, bit for bit, whenever one of these is returned.
+///
+/// Indices are into the object the quantity names: `row` and `col` of the
+/// matrix the user's model returned (for a vector, `row` is the index and
+/// `col` is 0), never into an internal matrix.
 ///
 /// ```
 /// use kestrel_core::{FilterError, Quantity};
-/// let e = FilterError::NonFinite { what: Quantity::Measurement, index: 2 };
-/// assert_eq!(e.to_string(), "measurement has a non-finite value at index 2");
+/// let e = FilterError::NonFinite { what: Quantity::Measurement, row: 2, col: 0 };
+/// assert_eq!(e.to_string(), "measurement z has a non-finite value at index 2");
+/// let e = FilterError::NotSymmetric { what: Quantity::MeasurementNoise, row: 1, col: 0 };
+/// assert_eq!(
+///     e.to_string(),
+///     "measurement noise covariance R is not symmetric: entries (1, 0) and (0, 1) differ"
+/// );
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum FilterError {
-    /// An input or intermediate value is NaN or infinite.
+    /// An input or computed value is NaN or infinite.
     NonFinite {
         /// Which quantity.
         what: Quantity,
-        /// Index of the first offending element (column-major for matrices).
-        index: usize,
+        /// Row (vector index) of the first offending element, column-major.
+        row: usize,
+        /// Column of the first offending element (0 for a vector).
+        col: usize,
     },
-    /// A matrix that must be positive (semi-)definite is not: its Cholesky
-    /// factorisation met a non-positive pivot.
+    /// A covariance differs from its transpose by more than
+    /// [`symmetry_tolerance`](crate::contract::symmetry_tolerance) relative
+    /// to its scale.
+    NotSymmetric {
+        /// Which matrix.
+        what: Quantity,
+        /// Row of the first offending entry (in the lower triangle).
+        row: usize,
+        /// Its column.
+        col: usize,
+    },
+    /// A matrix that must be positive semi-definite (`P`, `Q`, `R`) or
+    /// positive definite (the innovation covariance) is not: its leading
+    /// block up to row and column `index` is indefinite (a negative variance
+    /// at `index` is the common case).
     NotPositiveDefinite {
         /// Which matrix.
         what: Quantity,
-        /// The pivot (row and column) where factorisation failed.
+        /// Row and column where the leading block stops being positive
+        /// (semi-)definite.
         index: usize,
     },
+    /// `predict` was given a negative time step.
+    NegativeTimeStep,
     /// A rank-one downdate of the square-root covariance would have made it
     /// indefinite (the square-root form's measurement update or a negative
     /// sigma-point weight).
     DowndateFailed {
         /// Which downdate vector (column of `U = K S_z`, or 0 for a weight).
         column: usize,
-        /// The pivot where the downdate failed.
+        /// The state index where the downdate failed.
         index: usize,
     },
     /// A configuration parameter is out of its valid range.
     InvalidParameter {
-        /// The parameter's name.
+        /// The parameter's name, as in the constructor's signature.
         name: &'static str,
+        /// Its valid range, in words (e.g. `"0 < b < 1"`).
+        valid: &'static str,
     },
 }
 
 impl fmt::Display for FilterError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            FilterError::NonFinite { what, index } => {
-                write!(f, "{what} has a non-finite value at index {index}")
+            FilterError::NonFinite { what, row, .. } if what.is_vector() => {
+                write!(f, "{what} has a non-finite value at index {row}")
             }
+            FilterError::NonFinite { what, row, col } => {
+                write!(f, "{what} has a non-finite value at row {row}, column {col}")
+            }
+            FilterError::NotSymmetric { what, row, col } => write!(
+                f,
+                "{what} is not symmetric: entries ({row}, {col}) and ({col}, {row}) differ"
+            ),
             FilterError::NotPositiveDefinite { what, index } => {
-                write!(f, "{what} is not positive definite (pivot {index})")
+                let semi = if what.must_be_definite() { "" } else { "semi-" };
+                write!(
+                    f,
+                    "{what} is not positive {semi}definite (first failing row and column: {index})"
+                )
             }
+            FilterError::NegativeTimeStep => f.write_str("time step dt is negative"),
             FilterError::DowndateFailed { column, index } => write!(
                 f,
-                "square-root covariance downdate by column {column} lost positive definiteness at pivot {index}"
+                "square-root covariance downdate by column {column} lost positive definiteness at state {index}"
             ),
-            FilterError::InvalidParameter { name } => write!(f, "parameter {name} is out of range"),
+            FilterError::InvalidParameter { name, valid } => {
+                write!(f, "parameter {name} is out of range: it must be {valid}")
+            }
         }
     }
 }
@@ -134,13 +233,18 @@ fn all_finite<T: crate::Real>(values: &[T]) -> bool {
     total == T::zero()
 }
 
-/// `Err(NonFinite)` naming `what` if any element of `values` is not finite.
-pub(crate) fn ensure_finite<T: crate::Real>(
-    values: &[T],
+/// `Err(NonFinite)` naming `what` and the row and column of the first
+/// non-finite element of `m` (a vector is a one-column matrix).
+pub(crate) fn ensure_finite<T: crate::Real, const R: usize, const C: usize>(
+    m: &SMatrix<T, R, C>,
     what: Quantity,
 ) -> Result<(), FilterError> {
-    match first_non_finite(values) {
-        Some(index) => Err(FilterError::NonFinite { what, index }),
+    match first_non_finite(m.as_slice()) {
+        Some(i) => Err(FilterError::NonFinite {
+            what,
+            row: i % R,
+            col: i / R,
+        }),
         None => Ok(()),
     }
 }

@@ -87,7 +87,7 @@ impl<T: Real, const N: usize> Filter<T, N, SquareRootForm<T, N>> {
 impl<T: Real, const N: usize, F: Form<T, N>> Filter<T, N, F> {
     /// A filter from an initial state and a configured form, without adapter.
     pub fn with_form(x0: SVector<T, N>, form: F) -> Result<Self, FilterError> {
-        crate::error::ensure_finite(x0.as_slice(), crate::Quantity::UpdatedEstimate)?;
+        crate::error::ensure_finite(&x0, crate::Quantity::State)?;
         Ok(Self {
             x: x0,
             form,
@@ -129,6 +129,7 @@ impl<T: Real, const N: usize, F: Form<T, N>, A, S: StateSpace<T, N>> Filter<T, N
         F: PredictForm<T, N, P>,
         A: PriorAdapter<T>,
     {
+        crate::contract::check_time_step(dt)?;
         self.form
             .predict(&mut self.x, model, dt, &mut self.adapter, &self.space)
     }
@@ -178,7 +179,7 @@ impl<T: Real, const N: usize, F: Form<T, N>, A, S: StateSpace<T, N>> Filter<T, N
     /// Replaces the state estimate (e.g. the reset of an error-state filter
     /// after closed-loop feedback). Non-finite states are refused.
     pub fn set_state(&mut self, x: SVector<T, N>) -> Result<(), FilterError> {
-        crate::error::ensure_finite(x.as_slice(), crate::Quantity::UpdatedEstimate)?;
+        crate::error::ensure_finite(&x, crate::Quantity::State)?;
         self.x = x;
         Ok(())
     }

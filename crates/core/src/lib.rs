@@ -48,6 +48,7 @@
 #![deny(missing_docs)]
 
 pub mod adapter;
+pub mod contract;
 mod error;
 mod filter;
 pub mod form;

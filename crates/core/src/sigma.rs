@@ -51,6 +51,12 @@ impl<T: Real> Default for MerweParams<T> {
 }
 
 impl<T: Real> MerweParams<T> {
+    /// The error for parameters [`weights`](Self::weights) refuses.
+    pub const INVALID: FilterError = FilterError::InvalidParameter {
+        name: "MerweParams",
+        valid: "finite with α > 0 and α²(N + κ) > 0",
+    };
+
     /// The parameters `(α, β, κ)`.
     pub fn new(alpha: T, beta: T, kappa: T) -> Self {
         Self { alpha, beta, kappa }
@@ -156,12 +162,12 @@ where
 {
     let chi = points(x, s, w.spread, space);
     let y0 = model.propagate(x, dt);
-    ensure_finite(y0.as_slice(), Quantity::Propagation)?;
+    ensure_finite(&y0, Quantity::PropagatedState)?;
     let mut ys = chi;
     for pair in ys.iter_mut() {
         for v in pair.iter_mut() {
             *v = model.propagate(v, dt);
-            ensure_finite(v.as_slice(), Quantity::Propagation)?;
+            ensure_finite(&v, Quantity::PropagatedState)?;
         }
     }
     let mut acc = SVector::<T, N>::zeros();
@@ -212,13 +218,13 @@ where
 {
     let chi = points(x, s, w.spread, space);
     let z0 = model.predict(x);
-    ensure_finite(z0.as_slice(), Quantity::PredictedMeasurement)?;
+    ensure_finite(&z0, Quantity::PredictedMeasurement)?;
     let mut zs: Pairs<T, M, N> = [[SVector::zeros(); 2]; N];
     let mut acc = SVector::<T, M>::zeros();
     for (zp, cp) in zs.iter_mut().zip(&chi) {
         for (zv, cv) in zp.iter_mut().zip(cp) {
             *zv = model.predict(cv);
-            ensure_finite(zv.as_slice(), Quantity::PredictedMeasurement)?;
+            ensure_finite(&zv, Quantity::PredictedMeasurement)?;
             acc += model.residual(zv, &z0);
         }
     }

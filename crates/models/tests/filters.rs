@@ -257,7 +257,7 @@ fn range_bearing_at_the_sensor_is_refused() {
         matches!(
             err,
             FilterError::NonFinite {
-                what: Quantity::PredictedMeasurement,
+                what: Quantity::MeasurementJacobian,
                 ..
             }
         ),

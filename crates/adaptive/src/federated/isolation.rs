@@ -102,14 +102,21 @@ impl<T: Real> Isolation<T> {
     /// `"fail_after"` / `"readmit_after"` if zero.
     pub fn new(alpha: f64, fail_after: u32, readmit_after: u32) -> Result<Self, FilterError> {
         if !(alpha > 0.0 && alpha < 1.0) {
-            return Err(FilterError::InvalidParameter { name: "alpha" });
+            return Err(FilterError::InvalidParameter {
+                name: "alpha",
+                valid: "0 < alpha < 1",
+            });
         }
         if fail_after == 0 {
-            return Err(FilterError::InvalidParameter { name: "fail_after" });
+            return Err(FilterError::InvalidParameter {
+                name: "fail_after",
+                valid: "at least 1",
+            });
         }
         if readmit_after == 0 {
             return Err(FilterError::InvalidParameter {
                 name: "readmit_after",
+                valid: "at least 1",
             });
         }
         let mut thresholds = [T::zero(); CACHED_DOF];
@@ -145,7 +152,10 @@ impl<T: Real> Isolation<T> {
     /// [`FilterError::InvalidParameter`] (`"dof"`) if `dof == 0`.
     pub fn threshold(&self, dof: usize) -> Result<T, FilterError> {
         match dof {
-            0 => Err(FilterError::InvalidParameter { name: "dof" }),
+            0 => Err(FilterError::InvalidParameter {
+                name: "dof",
+                valid: "at least 1 (the measurement dimension M)",
+            }),
             d if d <= CACHED_DOF => Ok(self.thresholds[d - 1]),
             d => Ok(lit(chi_square_quantile(1.0 - self.significance, d)?)),
         }

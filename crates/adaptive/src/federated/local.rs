@@ -57,8 +57,9 @@ impl<T: Real, const N: usize, F: Form<T, N>, A, S: StateSpace<T, N>> LocalFilter
         // covariance behind.
         if let Some(index) = x.iter().position(|v| !v.is_finite()) {
             return Err(FilterError::NonFinite {
-                what: Quantity::UpdatedEstimate,
-                index,
+                what: Quantity::UpdatedState,
+                row: index,
+                col: 0,
             });
         }
         self.set_covariance(p)?;

@@ -39,7 +39,10 @@ impl<'m, T: Real, P> SharedNoise<'m, T, P> {
         // Also refuses NaN; a share too small to invert is not finite.
         let inverse_share = share.recip();
         if !(share > T::zero() && share <= T::one() && inverse_share.is_finite()) {
-            return Err(FilterError::InvalidParameter { name: "share" });
+            return Err(FilterError::InvalidParameter {
+                name: "share",
+                valid: "0 < share ≤ 1, with a finite reciprocal",
+            });
         }
         Ok(Self {
             model,

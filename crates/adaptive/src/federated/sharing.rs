@@ -141,7 +141,10 @@ fn equal<T: Real, const L: usize>() -> [T; L] {
 }
 
 fn validate<T: Real, const L: usize>(shares: &[T; L]) -> Result<(), FilterError> {
-    let invalid = FilterError::InvalidParameter { name: "shares" };
+    let invalid = FilterError::InvalidParameter {
+        name: "shares",
+        valid: "L finite shares, each in (0, 1], summing to 1",
+    };
     let mut sum = T::zero();
     for &b in shares {
         // Also refuses NaN.

@@ -72,7 +72,7 @@ impl<T: Real, const I: usize, const S: usize, const O: usize, const R: usize>
     /// An engine from its variables, rule base and defuzzifier.
     ///
     /// # Errors
-    /// `InvalidParameter { name: "rules" }` if a rule names a set an input
+    /// `InvalidParameter { name: "rules", valid: "rules naming only sets that exist, with at least one rule" }` if a rule names a set an input
     /// or the output does not have, or if there are no rules.
     pub fn new(
         inputs: [InputVariable<T, S>; I],
@@ -80,7 +80,10 @@ impl<T: Real, const I: usize, const S: usize, const O: usize, const R: usize>
         rules: [Rule<I>; R],
         defuzzifier: Defuzzifier,
     ) -> Result<Self, FilterError> {
-        let bad = FilterError::InvalidParameter { name: "rules" };
+        let bad = FilterError::InvalidParameter {
+            name: "rules",
+            valid: "rules naming only sets that exist, with at least one rule",
+        };
         if R == 0 {
             return Err(bad);
         }

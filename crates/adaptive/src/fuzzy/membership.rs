@@ -39,7 +39,10 @@ impl<T: Real> Membership<T> {
     ) -> Result<Self, FilterError> {
         let finite = a.is_finite() && b.is_finite() && c.is_finite() && d.is_finite();
         if !(finite && a <= b && b <= c && c <= d && a < d) {
-            return Err(FilterError::InvalidParameter { name: "membership" });
+            return Err(FilterError::InvalidParameter {
+                name: "membership",
+                valid: "finite break points a ≤ b ≤ c ≤ d with a < d",
+            });
         }
         Ok(Self {
             a,
@@ -54,7 +57,7 @@ impl<T: Real> Membership<T> {
     /// Triangle: 0 at `left`, 1 at `peak`, 0 at `right`.
     ///
     /// # Errors
-    /// `InvalidParameter { name: "membership" }` unless the points are
+    /// `InvalidParameter { name: "membership", valid: "finite break points a ≤ b ≤ c ≤ d with a < d" }` unless the points are
     /// finite with `left ≤ peak ≤ right` and `left < right`.
     pub fn triangle(left: T, peak: T, right: T) -> Result<Self, FilterError> {
         Self::checked([left, peak, peak, right], false, false)
@@ -63,7 +66,7 @@ impl<T: Real> Membership<T> {
     /// Trapezoid: 0 at `left`, 1 on `[left_top, right_top]`, 0 at `right`.
     ///
     /// # Errors
-    /// `InvalidParameter { name: "membership" }` unless the points are
+    /// `InvalidParameter { name: "membership", valid: "finite break points a ≤ b ≤ c ≤ d with a < d" }` unless the points are
     /// finite, non-decreasing and `left < right`.
     pub fn trapezoid(left: T, left_top: T, right_top: T, right: T) -> Result<Self, FilterError> {
         Self::checked([left, left_top, right_top, right], false, false)
@@ -72,7 +75,7 @@ impl<T: Real> Membership<T> {
     /// Left shoulder: 1 up to `top`, falling linearly to 0 at `zero`.
     ///
     /// # Errors
-    /// `InvalidParameter { name: "membership" }` unless both are finite and
+    /// `InvalidParameter { name: "membership", valid: "finite break points a ≤ b ≤ c ≤ d with a < d" }` unless both are finite and
     /// `top < zero`.
     pub fn left_shoulder(top: T, zero: T) -> Result<Self, FilterError> {
         Self::checked([top, top, top, zero], true, false)
@@ -82,7 +85,7 @@ impl<T: Real> Membership<T> {
     /// beyond.
     ///
     /// # Errors
-    /// `InvalidParameter { name: "membership" }` unless both are finite and
+    /// `InvalidParameter { name: "membership", valid: "finite break points a ≤ b ≤ c ≤ d with a < d" }` unless both are finite and
     /// `zero < top`.
     pub fn right_shoulder(zero: T, top: T) -> Result<Self, FilterError> {
         Self::checked([zero, top, top, top], false, true)

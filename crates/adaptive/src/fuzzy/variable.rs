@@ -26,11 +26,14 @@ impl<T: Real, const S: usize> InputVariable<T, S> {
     /// A variable with the given sets, in the order rules refer to them.
     ///
     /// # Errors
-    /// `InvalidParameter { name: "sets" }` if `sets` is empty or longer
+    /// `InvalidParameter { name: "sets", valid: "between 1 and the variable's capacity of sets" }` if `sets` is empty or longer
     /// than `S`.
     pub fn new(sets: &[Membership<T>]) -> Result<Self, FilterError> {
         if sets.is_empty() || sets.len() > S {
-            return Err(FilterError::InvalidParameter { name: "sets" });
+            return Err(FilterError::InvalidParameter {
+                name: "sets",
+                valid: "between 1 and the variable's capacity of sets",
+            });
         }
         let mut all = [sets[0]; S];
         all[..sets.len()].copy_from_slice(sets);
@@ -85,15 +88,19 @@ impl<T: Real, const O: usize> OutputVariable<T, O> {
     /// The output with sets `sets` over `[low, high]`.
     ///
     /// # Errors
-    /// `InvalidParameter { name: "output range" }` unless both bounds are
+    /// `InvalidParameter { name: "output range", valid: "finite bounds with low < high" }` unless both bounds are
     /// finite and `low < high`, or `"sets"` for `O = 0`.
     pub fn new(sets: [Membership<T>; O], low: T, high: T) -> Result<Self, FilterError> {
         if O == 0 {
-            return Err(FilterError::InvalidParameter { name: "sets" });
+            return Err(FilterError::InvalidParameter {
+                name: "sets",
+                valid: "between 1 and the variable's capacity of sets",
+            });
         }
         if !(low.is_finite() && high.is_finite() && low < high) {
             return Err(FilterError::InvalidParameter {
                 name: "output range",
+                valid: "finite bounds with low < high",
             });
         }
         Ok(Self { sets, low, high })

@@ -150,14 +150,17 @@ impl<T: Real, const M: usize, const S: usize, const O: usize, const R: usize>
     /// `β ∈ (0, 1]` of the innovation mean.
     ///
     /// # Errors
-    /// `InvalidParameter { name: "smoothing" }` outside `(0, 1]`.
+    /// `InvalidParameter { name: "smoothing", valid: "0 < smoothing ≤ 1" }` outside `(0, 1]`.
     pub fn new(
         engine: Engine<T, 3, S, O, R>,
         unusable: [bool; O],
         smoothing: f64,
     ) -> Result<Self, FilterError> {
         if !(smoothing > 0.0 && smoothing <= 1.0) {
-            return Err(FilterError::InvalidParameter { name: "smoothing" });
+            return Err(FilterError::InvalidParameter {
+                name: "smoothing",
+                valid: "0 < smoothing ≤ 1",
+            });
         }
         Ok(Self {
             engine,

@@ -140,7 +140,8 @@ impl Files<'_> {
             // GNSS-only filters never see an odometer reading (no rate is set).
             |_, _| {
                 Err(FilterError::InvalidParameter {
-                    name: "odometer aiding without an odometer model",
+                    name: "odometer",
+                    valid: "absent: this filter has no odometer error model",
                 })
             },
         )

@@ -4,6 +4,7 @@ use super::outcome::{adapt_checked, joseph_gain};
 use super::pending::PendingCovariance;
 use super::{sequential, FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
+use crate::contract::{check_covariance, check_diagonal, check_noise_cached};
 use crate::error::ensure_finite;
 use crate::linalg::{mirror_lower, sandwich, sandwich_transposed};
 use crate::{
@@ -82,7 +83,7 @@ impl<T: Real, const N: usize> Form<T, N> for CovarianceForm<T, N> {
     }
 
     fn set_covariance(&mut self, p: &SMatrix<T, N, N>) -> Result<(), FilterError> {
-        ensure_finite(p.as_slice(), Quantity::StateCovariance)?;
+        check_covariance(p, Quantity::StateCovariance)?;
         let mut p = *p;
         mirror_lower(&mut p);
         self.cov.commit(p);
@@ -101,15 +102,15 @@ impl<T: Real, const N: usize, P: LinearizedProcess<T, N>> PredictForm<T, N, P>
         adapter: &mut A,
         _space: &S,
     ) -> Result<(), FilterError> {
-        let phi = model.transition(x, dt);
-        ensure_finite(phi.as_slice(), Quantity::Propagation)?;
         let mut q = model.noise(x, dt);
-        ensure_finite(q.as_slice(), Quantity::ProcessNoise)?;
+        check_noise_cached(&q, self.cov.noise(), Quantity::ProcessNoise)?;
         mirror_lower(&mut q);
+        let phi = model.transition(x, dt);
+        ensure_finite(&phi, Quantity::Transition)?;
         let x_new = model.propagate(x, dt);
-        ensure_finite(x_new.as_slice(), Quantity::Propagation)?;
+        ensure_finite(&x_new, Quantity::PropagatedState)?;
         let propagated = sandwich(&phi, &self.cov.prior(T::one()));
-        ensure_finite(propagated.as_slice(), Quantity::StateCovariance)?;
+        ensure_finite(&propagated, Quantity::PropagatedCovariance)?;
 
         let mut step = PriorStep::new(dt);
         adapter.after_predict(&mut step);
@@ -130,23 +131,32 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         adapter: &mut A,
         space: &S,
     ) -> Result<UpdateReport<T, M, A::Report>, FilterError> {
-        ensure_finite(z.as_slice(), Quantity::Measurement)?;
-        let z_hat = model.predict(x);
-        ensure_finite(z_hat.as_slice(), Quantity::PredictedMeasurement)?;
-        let h = model.jacobian(x);
-        ensure_finite(h.as_slice(), Quantity::PredictedMeasurement)?;
+        ensure_finite(z, Quantity::Measurement)?;
         let mut r = model.noise();
-        ensure_finite(r.as_slice(), Quantity::MeasurementNoise)?;
+        // Diagonal R (the sequential path) needs no factor: its check is
+        // the sign of each variance. Otherwise the factor the Joseph update
+        // takes R through is the check.
+        let diagonal = A::IS_IDENTITY && self.sequential && sequential::is_diagonal(&r);
+        let r_factor = if diagonal {
+            check_diagonal(&r, Quantity::MeasurementNoise)?;
+            None
+        } else {
+            Some(check_covariance(&r, Quantity::MeasurementNoise)?)
+        };
         mirror_lower(&mut r);
+        let z_hat = model.predict(x);
+        ensure_finite(&z_hat, Quantity::PredictedMeasurement)?;
+        let h = model.jacobian(x);
+        ensure_finite(&h, Quantity::MeasurementJacobian)?;
         let nu = model.residual(z, &z_hat);
-        ensure_finite(nu.as_slice(), Quantity::Measurement)?;
+        ensure_finite(&nu, Quantity::Measurement)?;
         let prior = self.cov.prior(T::one());
 
-        if A::IS_IDENTITY && self.sequential && sequential::is_diagonal(&r) {
+        if diagonal {
             let out = sequential::update(&prior, &h, &r, &nu)?;
             let x_new = space.add(x, &out.correction);
-            ensure_finite(x_new.as_slice(), Quantity::UpdatedEstimate)?;
-            ensure_finite(out.covariance.as_slice(), Quantity::UpdatedEstimate)?;
+            ensure_finite(&x_new, Quantity::UpdatedState)?;
+            ensure_finite(&out.covariance, Quantity::UpdatedCovariance)?;
             *x = x_new;
             self.cov.commit(out.covariance);
             return Ok(UpdateReport {
@@ -190,9 +200,18 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         };
         let (r_used, nu_used) = done.used()?;
         let c = hph + r_used;
-        let gain = joseph_gain(&prior, &hp, &hph, &r_used, &c, done.factor_if_unfaded())?;
+        let r_factor = r_factor.filter(|_| !done.step.noise_changed());
+        let gain = joseph_gain(
+            &prior,
+            &hp,
+            &hph,
+            &r_used,
+            r_factor.as_ref(),
+            &c,
+            done.factor_if_unfaded(),
+        )?;
         let x_new = space.add(x, &(gain.k * nu_used));
-        ensure_finite(x_new.as_slice(), Quantity::UpdatedEstimate)?;
+        ensure_finite(&x_new, Quantity::UpdatedState)?;
 
         *x = x_new;
         let total_fade = self.cov.total_fade(fade);

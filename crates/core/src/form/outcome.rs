@@ -24,7 +24,8 @@ pub(crate) struct Gain<T: Real, const N: usize, const M: usize> {
 /// The gain `K = B C⁻¹` (two triangular solves on `Bᵀ`) and the expanded
 /// Joseph update of `prior`, for the cross covariance `B = P⁻ Hᵀ` (or `P_xz`),
 /// given transposed, the predicted measurement covariance `predicted`
-/// (`H P⁻ Hᵀ` or `P_zz`), the noise `noise` and `c = predicted + noise`.
+/// (`H P⁻ Hᵀ` or `P_zz`), the noise `noise` (with its lower Cholesky factor
+/// `noise_factor` when the caller has it) and `c = predicted + noise`.
 /// `known` is the lower Cholesky factor of `c` if the caller already has it
 /// (the adapters' view factors the same matrix when nothing faded it).
 ///
@@ -38,6 +39,7 @@ pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
     cross_t: &SMatrix<T, M, N>,
     predicted: &SMatrix<T, M, M>,
     noise: &SMatrix<T, M, M>,
+    noise_factor: Option<&SMatrix<T, M, M>>,
     c: &SMatrix<T, M, M>,
     known: Option<&SMatrix<T, M, M>>,
 ) -> Result<Gain<T, N, M>, FilterError> {
@@ -50,11 +52,15 @@ pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
     solve_lower_transpose(&factor, &mut kt);
     let k = kt.transpose();
     let b = cross_t.transpose();
-    let covariance = match cholesky_semidefinite(noise) {
-        Ok(l) => joseph_factored_noise(prior, &k, &b, predicted, &l),
-        Err(_) => joseph_expanded(prior, &k, &b, c),
+    let covariance = match noise_factor {
+        Some(l) => joseph_factored_noise(prior, &k, &b, predicted, l),
+        // An R an adapter set: factor it here.
+        None => match cholesky_semidefinite(noise) {
+            Ok(l) => joseph_factored_noise(prior, &k, &b, predicted, &l),
+            Err(_) => joseph_expanded(prior, &k, &b, c),
+        },
     };
-    ensure_finite(covariance.as_slice(), Quantity::UpdatedEstimate)?;
+    ensure_finite(&covariance, Quantity::UpdatedCovariance)?;
     Ok(Gain {
         k,
         covariance,
@@ -125,8 +131,8 @@ impl<T: Real, const M: usize, R> AdaptedStep<T, M, R> {
     /// The noise and innovation the adapters settled on, checked finite.
     pub fn used(&self) -> Result<(SMatrix<T, M, M>, SVector<T, M>), FilterError> {
         let (r, nu) = (*self.step.noise(), *self.step.innovation());
-        ensure_finite(r.as_slice(), Quantity::MeasurementNoise)?;
-        ensure_finite(nu.as_slice(), Quantity::Measurement)?;
+        ensure_finite(&r, Quantity::MeasurementNoise)?;
+        ensure_finite(&nu, Quantity::Measurement)?;
         Ok((r, nu))
     }
 

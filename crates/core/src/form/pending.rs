@@ -35,6 +35,13 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
         }
     }
 
+    /// The process noise of the last prediction (zero before the first):
+    /// it passed the input contract, so an equal `Q` need not be checked
+    /// again.
+    pub fn noise(&self) -> &SMatrix<T, N, N> {
+        &self.q
+    }
+
     /// The states a fade scales.
     pub fn fade_states(&self) -> FadeStates<N> {
         self.states

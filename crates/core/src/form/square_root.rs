@@ -4,6 +4,7 @@ use super::outcome::{adapt, not_pd};
 use super::unscented::effective_jacobian;
 use super::{FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
+use crate::contract::check_covariance;
 use crate::error::ensure_finite;
 use crate::linalg::{
     add_columns, cholesky_semidefinite, downdate_in_place, mirror_lower, solve_lower,
@@ -72,9 +73,10 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
     /// positive semi-definite) with the default sigma points.
     pub fn new(p0: &SMatrix<T, N, N>) -> Result<Self, FilterError> {
         let params = MerweParams::default();
-        let weights = params
-            .weights(N)
-            .ok_or(FilterError::InvalidParameter { name: "N" })?;
+        let weights = params.weights(N).ok_or(FilterError::InvalidParameter {
+            name: "N",
+            valid: "at least 1 (a state of dimension 0 has no sigma points)",
+        })?;
         let mut form = Self {
             s: SMatrix::zeros(),
             sq: SMatrix::zeros(),
@@ -93,7 +95,7 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
     /// A form from a lower-triangular factor `s` directly (`P = S Sᵀ`; the
     /// strict upper triangle is ignored).
     pub fn from_factor(s: &SMatrix<T, N, N>) -> Result<Self, FilterError> {
-        ensure_finite(s.as_slice(), Quantity::StateCovariance)?;
+        ensure_finite(s, Quantity::StateCovariance)?;
         let mut form = Self::new(&SMatrix::zeros())?;
         form.s = s.lower_triangle();
         Ok(form)
@@ -101,9 +103,7 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
 
     /// The same form with sigma-point parameters `params`.
     pub fn with_params(mut self, params: MerweParams<T>) -> Result<Self, FilterError> {
-        self.weights = params.weights(N).ok_or(FilterError::InvalidParameter {
-            name: "MerweParams",
-        })?;
+        self.weights = params.weights(N).ok_or(MerweParams::<T>::INVALID)?;
         self.params = params;
         Ok(self)
     }
@@ -193,17 +193,14 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
         }
     }
 
-    /// `S_z` with `S_z S_zᵀ = Σ Wc dzⱼ dzⱼᵀ + R`, from `chol(R)`.
+    /// `S_z` with `S_z S_zᵀ = Σ Wc dzⱼ dzⱼᵀ + R`, from `sr = chol(R)`.
     fn innovation_factor<const M: usize>(
         &self,
         measured: &MeasuredSigma<T, N, M>,
-        r: &SMatrix<T, M, M>,
+        sr: &SMatrix<T, M, M>,
     ) -> Result<SMatrix<T, M, M>, FilterError> {
         // R may be singular (a perfect measurement) as long as C is not.
-        let mut sz = cholesky_semidefinite(r).map_err(|e| FilterError::NotPositiveDefinite {
-            what: Quantity::MeasurementNoise,
-            index: e.index,
-        })?;
+        let mut sz = *sr;
         let mut pairs = measured.pairs;
         Self::fold(
             self.time_update,
@@ -228,6 +225,16 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
     }
 }
 
+/// The factor of an `R` an adapter set (it may be singular, not indefinite).
+fn noise_factor<T: Real, const M: usize>(
+    r: &SMatrix<T, M, M>,
+) -> Result<SMatrix<T, M, M>, FilterError> {
+    cholesky_semidefinite(r).map_err(|e| FilterError::NotPositiveDefinite {
+        what: Quantity::MeasurementNoise,
+        index: e.index,
+    })
+}
+
 impl<T: Real, const N: usize> Form<T, N> for SquareRootForm<T, N> {
     fn covariance(&self) -> SMatrix<T, N, N> {
         let s = self.factor();
@@ -237,11 +244,7 @@ impl<T: Real, const N: usize> Form<T, N> for SquareRootForm<T, N> {
     }
 
     fn set_covariance(&mut self, p: &SMatrix<T, N, N>) -> Result<(), FilterError> {
-        ensure_finite(p.as_slice(), Quantity::StateCovariance)?;
-        let s = cholesky_semidefinite(p).map_err(|e| FilterError::NotPositiveDefinite {
-            what: Quantity::StateCovariance,
-            index: e.index,
-        })?;
+        let s = check_covariance(p, Quantity::StateCovariance)?;
         self.commit(s);
         Ok(())
     }
@@ -258,12 +261,8 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Sq
     ) -> Result<(), FilterError> {
         let s = self.prior_factor(T::one());
         let mut q = model.noise(x, dt);
-        ensure_finite(q.as_slice(), Quantity::ProcessNoise)?;
+        let sq = check_covariance(&q, Quantity::ProcessNoise)?;
         mirror_lower(&mut q);
-        let sq = cholesky_semidefinite(&q).map_err(|e| FilterError::NotPositiveDefinite {
-            what: Quantity::ProcessNoise,
-            index: e.index,
-        })?;
         let mut propagated = sigma::propagate(x, &s, &self.weights, model, dt, space)?;
 
         let mut step = PriorStep::new(dt);
@@ -294,7 +293,7 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Sq
                 index: e.index,
             },
         )?;
-        ensure_finite(factor.as_slice(), Quantity::StateCovariance)?;
+        ensure_finite(&factor, Quantity::PropagatedCovariance)?;
 
         *x = propagated.mean;
         if A::NEEDS_SPLIT {
@@ -321,19 +320,19 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         adapter: &mut A,
         space: &S,
     ) -> Result<UpdateReport<T, M, A::Report>, FilterError> {
-        ensure_finite(z.as_slice(), Quantity::Measurement)?;
+        ensure_finite(z, Quantity::Measurement)?;
         let mut r = model.noise();
-        ensure_finite(r.as_slice(), Quantity::MeasurementNoise)?;
+        let sr = check_covariance(&r, Quantity::MeasurementNoise)?;
         mirror_lower(&mut r);
         let w = self.weights;
 
         let prior = self.prior_factor(T::one());
         let measured = sigma::measure(x, &prior, &w, model, space)?;
-        let sz = self.innovation_factor(&measured, &r)?;
+        let sz = self.innovation_factor(&measured, &sr)?;
         let mut c = sz * sz.transpose();
         mirror_lower(&mut c);
         let nu = model.residual(z, &measured.z_hat);
-        ensure_finite(nu.as_slice(), Quantity::Measurement)?;
+        ensure_finite(&nu, Quantity::Measurement)?;
 
         let split = A::NEEDS_SPLIT.then(|| {
             match (self.pending, effective_jacobian(&prior, &measured.cross)) {
@@ -366,10 +365,10 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         let (prior, measured, sz) = if fade != T::one() {
             let prior = self.prior_factor(fade);
             let measured = sigma::measure(x, &prior, &w, model, space)?;
-            let sz = self.innovation_factor(&measured, &r_used)?;
+            let sz = self.innovation_factor(&measured, &noise_factor(&r_used)?)?;
             (prior, measured, sz)
         } else if done.step.noise_changed() {
-            let sz = self.innovation_factor(&measured, &r_used)?;
+            let sz = self.innovation_factor(&measured, &noise_factor(&r_used)?)?;
             (prior, measured, sz)
         } else {
             (prior, measured, sz)
@@ -383,7 +382,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         solve_lower_transpose(&sz, &mut kt);
         let k = kt.transpose();
         let x_new = space.add(x, &(k * nu_used));
-        ensure_finite(x_new.as_slice(), Quantity::UpdatedEstimate)?;
+        ensure_finite(&x_new, Quantity::UpdatedState)?;
         let u = k * sz;
         let mut s_new = prior;
         for j in 0..M {
@@ -391,7 +390,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             downdate_in_place(&mut s_new, &mut col)
                 .map_err(|index| FilterError::DowndateFailed { column: j, index })?;
         }
-        ensure_finite(s_new.as_slice(), Quantity::UpdatedEstimate)?;
+        ensure_finite(&s_new, Quantity::UpdatedCovariance)?;
 
         *x = x_new;
         let total_fade = self.predict_fade * if self.pending { self.fade * fade } else { fade };

@@ -4,6 +4,7 @@ use super::outcome::{adapt_checked, joseph_gain};
 use super::pending::PendingCovariance;
 use super::{FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
+use crate::contract::{check_covariance, check_noise_cached};
 use crate::error::ensure_finite;
 use crate::linalg::{cholesky_semidefinite, mirror_lower, solve_lower, solve_lower_transpose};
 use crate::sigma::{self, MerweParams, SigmaWeights};
@@ -41,9 +42,10 @@ impl<T: Real, const N: usize> UnscentedForm<T, N> {
     /// sigma points.
     pub fn new(p0: &SMatrix<T, N, N>) -> Result<Self, FilterError> {
         let params = MerweParams::default();
-        let weights = params
-            .weights(N)
-            .ok_or(FilterError::InvalidParameter { name: "N" })?;
+        let weights = params.weights(N).ok_or(FilterError::InvalidParameter {
+            name: "N",
+            valid: "at least 1 (a state of dimension 0 has no sigma points)",
+        })?;
         let mut form = Self {
             cov: PendingCovariance::new(SMatrix::zeros()),
             params,
@@ -55,9 +57,7 @@ impl<T: Real, const N: usize> UnscentedForm<T, N> {
 
     /// The same form with sigma-point parameters `params`.
     pub fn with_params(mut self, params: MerweParams<T>) -> Result<Self, FilterError> {
-        self.weights = params.weights(N).ok_or(FilterError::InvalidParameter {
-            name: "MerweParams",
-        })?;
+        self.weights = params.weights(N).ok_or(MerweParams::<T>::INVALID)?;
         self.params = params;
         Ok(self)
     }
@@ -119,7 +119,7 @@ impl<T: Real, const N: usize> Form<T, N> for UnscentedForm<T, N> {
     }
 
     fn set_covariance(&mut self, p: &SMatrix<T, N, N>) -> Result<(), FilterError> {
-        ensure_finite(p.as_slice(), Quantity::StateCovariance)?;
+        check_covariance(p, Quantity::StateCovariance)?;
         let mut p = *p;
         mirror_lower(&mut p);
         self.cov.commit(p);
@@ -136,13 +136,13 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Un
         adapter: &mut A,
         space: &S,
     ) -> Result<(), FilterError> {
-        let s = factor(&self.cov.prior(T::one()))?;
         let mut q = model.noise(x, dt);
-        ensure_finite(q.as_slice(), Quantity::ProcessNoise)?;
+        check_noise_cached(&q, self.cov.noise(), Quantity::ProcessNoise)?;
         mirror_lower(&mut q);
+        let s = factor(&self.cov.prior(T::one()))?;
         let propagated = sigma::propagate(x, &s, &self.weights, model, dt, space)?;
         let p = propagated.covariance(&self.weights);
-        ensure_finite(p.as_slice(), Quantity::StateCovariance)?;
+        ensure_finite(&p, Quantity::PropagatedCovariance)?;
 
         let mut step = PriorStep::new(dt);
         adapter.after_predict(&mut step);
@@ -163,9 +163,9 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         adapter: &mut A,
         space: &S,
     ) -> Result<UpdateReport<T, M, A::Report>, FilterError> {
-        ensure_finite(z.as_slice(), Quantity::Measurement)?;
+        ensure_finite(z, Quantity::Measurement)?;
         let mut r = model.noise();
-        ensure_finite(r.as_slice(), Quantity::MeasurementNoise)?;
+        let r_factor = check_covariance(&r, Quantity::MeasurementNoise)?;
         mirror_lower(&mut r);
         let w = self.weights;
 
@@ -174,7 +174,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         let measured = sigma::measure(x, &s, &w, model, space)?;
         let pzz = measured.covariance(&w);
         let nu = model.residual(z, &measured.z_hat);
-        ensure_finite(nu.as_slice(), Quantity::Measurement)?;
+        ensure_finite(&nu, Quantity::Measurement)?;
 
         let split = A::NEEDS_SPLIT.then(|| {
             let h = effective_jacobian(&s, &measured.cross);
@@ -197,16 +197,18 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         };
         let (r_used, nu_used) = done.used()?;
         let c = pzz + r_used;
+        let r_factor = (!done.step.noise_changed()).then_some(r_factor);
         let gain = joseph_gain(
             &prior,
             &measured.cross.transpose(),
             &pzz,
             &r_used,
+            r_factor.as_ref(),
             &c,
             done.factor_if_unfaded(),
         )?;
         let x_new = space.add(x, &(gain.k * nu_used));
-        ensure_finite(x_new.as_slice(), Quantity::UpdatedEstimate)?;
+        ensure_finite(&x_new, Quantity::UpdatedState)?;
 
         *x = x_new;
         let total_fade = self.cov.total_fade(fade);

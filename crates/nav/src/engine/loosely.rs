@@ -382,7 +382,8 @@ where
     {
         if fix.vel.is_none() {
             return Err(FilterError::InvalidParameter {
-                name: "GnssFix::vel",
+                name: "GNSS fix velocity",
+                valid: "present for a position-velocity update",
             });
         }
         let ins = self.ins_context(fix.time);

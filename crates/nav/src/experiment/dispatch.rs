@@ -168,7 +168,8 @@ pub fn closed_loop_ekf<const N: usize, A>(
     let std = p0.std_vector(model);
     if std.len() != N {
         return Err(FilterError::InvalidParameter {
-            name: "P0 does not match the error model",
+            name: "P0",
+            valid: "one standard deviation for each state of the error model",
         });
     }
     let p0 =

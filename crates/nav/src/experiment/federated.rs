@@ -180,8 +180,9 @@ where
         let dx = fed.state().map(to_f64).component_mul(&inv);
         if let Some(index) = dx.iter().position(|v| !v.is_finite()) {
             return Err(failed(FilterError::NonFinite {
-                what: Quantity::UpdatedEstimate,
-                index,
+                what: Quantity::UpdatedState,
+                row: index,
+                col: 0,
             }));
         }
         feed_back::<f64, 15, Ins15>(&dx, &earth, ins.state_mut(), &mut corrections);

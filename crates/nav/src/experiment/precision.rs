@@ -426,6 +426,7 @@ pub fn compare_federated_precision(
             filter: ukf.label(),
             error: FilterError::InvalidParameter {
                 name: "process_noise_scale",
+                valid: "finite and greater than 0",
             },
         });
     }
