@@ -534,3 +534,127 @@ fn construction_and_setters_refuse_bad_input() {
         assert_unchanged(name, &before, &f);
     });
 }
+
+/// `R` that is not a covariance: every form refuses it with the same error,
+/// naming `R` and the row and column of the user's matrix.
+#[test]
+fn invalid_measurement_noise_is_refused_by_every_form() {
+    let sensor = |r: Matrix2<f64>| LinearMeasurement::new(Matrix2::identity(), r);
+    let cases = [
+        // A negative variance (diagonal: the sequential path's check).
+        (
+            Matrix2::new(1.0, 0.0, 0.0, -2.0),
+            not_pd(Quantity::MeasurementNoise, 1),
+        ),
+        // A negative variance first, with a correlation (the batch check).
+        (
+            Matrix2::new(-1.0, 0.1, 0.1, 2.0),
+            not_pd(Quantity::MeasurementNoise, 0),
+        ),
+        // Positive variances, correlation above 1: indefinite at row 1.
+        (
+            Matrix2::new(1.0, 2.0, 2.0, 1.0),
+            not_pd(Quantity::MeasurementNoise, 1),
+        ),
+        // One off-diagonal entry missing.
+        (
+            Matrix2::new(1.0, 0.5, 0.0, 1.0),
+            FilterError::NotSymmetric {
+                what: Quantity::MeasurementNoise,
+                row: 1,
+                col: 0,
+            },
+        ),
+        (
+            Matrix2::new(1.0, 0.0, 0.0, f64::INFINITY),
+            non_finite_at(Quantity::MeasurementNoise, 1, 1),
+        ),
+    ];
+    each_form!(X0, p0(), |name, f| {
+        for (r, want) in cases {
+            update_fails(name, &mut f, &sensor(r), &Vector2::new(1.0, 2.0), want);
+            f.predict(&cv(), 1.0).unwrap();
+            update_fails(name, &mut f, &sensor(r), &Vector2::new(1.0, 2.0), want);
+        }
+    });
+}
+
+/// `Q` and `P0` that are not symmetric, and a bad `dt`: the same error in
+/// every form, the filter unchanged.
+#[test]
+fn asymmetric_noise_and_bad_time_steps_are_refused_by_every_form() {
+    let lopsided = Matrix2::new(1.0, 0.3, 0.0, 1.0);
+    let asym = |what| FilterError::NotSymmetric {
+        what,
+        row: 1,
+        col: 0,
+    };
+    let q = LinearProcess::new(Matrix2::identity(), lopsided);
+    each_form!(X0, p0(), |name, f| {
+        predict_fails(name, &mut f, &q, asym(Quantity::ProcessNoise));
+        for (dt, want) in [
+            (-1e-9, FilterError::NegativeTimeStep),
+            (f64::NAN, non_finite(Quantity::TimeStep, 0)),
+            (f64::NEG_INFINITY, non_finite(Quantity::TimeStep, 0)),
+        ] {
+            let before = f.clone();
+            assert_eq!(f.predict(&cv(), dt).err(), Some(want), "{name}");
+            assert_unchanged(name, &before, &f);
+        }
+        // dt = 0 is a valid (empty) step.
+        f.predict(&cv(), 0.0).unwrap();
+    });
+    let want = Some(asym(Quantity::StateCovariance));
+    assert_eq!(Ekf::new(X0, lopsided).err(), want);
+    assert_eq!(Ukf::new(X0, lopsided).err(), want);
+    assert_eq!(SrUkf::new(X0, lopsided).err(), want);
+    // Rounding-level asymmetry (far below √ε) is accepted.
+    let rounded = Matrix2::new(4.0, 1.0, 1.0 + 1e-15, 2.0);
+    assert!(Ekf::new(X0, rounded).is_ok());
+    assert!(Ukf::new(X0, rounded).is_ok());
+    assert!(SrUkf::new(X0, rounded).is_ok());
+    // A negative initial variance.
+    let negative = Matrix2::new(4.0, 0.0, 0.0, -1.0);
+    let want = Some(not_pd(Quantity::StateCovariance, 1));
+    assert_eq!(Ekf::new(X0, negative).err(), want);
+    assert_eq!(Ukf::new(X0, negative).err(), want);
+    assert_eq!(SrUkf::new(X0, negative).err(), want);
+}
+
+/// A NaN `dt` used to surface as a non-finite entry of the propagated state
+/// at an index into `Φ`; it is now named as the time step, before any model
+/// is called.
+#[test]
+fn a_nan_time_step_is_named_as_such() {
+    let want = Some(non_finite(Quantity::TimeStep, 0));
+    let mut f = Ekf::new(SVector::<f64, 6>::zeros(), SMatrix::identity()).unwrap();
+    let process = LinearProcess::new(SMatrix::identity(), SMatrix::identity());
+    assert_eq!(f.predict(&process, f64::NAN).err(), want);
+    assert_eq!(
+        want.unwrap().to_string(),
+        "time step dt has a non-finite value at index 0"
+    );
+}
+
+/// The messages a person reads: quantity, place, what is wrong.
+#[test]
+fn messages_speak_in_the_users_terms() {
+    let cases = [
+        (
+            not_pd(Quantity::MeasurementNoise, 1),
+            "measurement noise covariance R is not positive semi-definite (first failing row and column: 1)",
+        ),
+        (
+            not_pd(Quantity::InnovationCovariance, 0),
+            "innovation covariance is not positive definite (first failing row and column: 0)",
+        ),
+        (
+            non_finite_at(Quantity::Transition, 0, 1),
+            "state-transition matrix has a non-finite value at row 0, column 1",
+        ),
+        (FilterError::NegativeTimeStep, "time step dt is negative"),
+    ];
+    for (e, text) in cases {
+        assert_eq!(e.to_string(), text);
+    }
+}
