@@ -118,7 +118,7 @@ fn time<const N: usize, A: NoiseAdapter<f64, M>>(
 
 fn size<const N: usize>(g: &mut Group) {
     time::<N, ()>(g, "plain", (), no_hook, |_| true);
-    time::<N, _>(g, "sage_husa", SageHusa::paper(), no_hook, |r| {
+    time::<N, _>(g, "sage_husa", SageHusa::paper().unwrap(), no_hook, |r| {
         r.adapters.estimated
     });
     time::<N, _>(

@@ -12,7 +12,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
 
 fn main() -> Result<(), FilterError> {
-    let motion = ConstantVelocity2d::new(0.01);
+    let motion = ConstantVelocity2d::new(0.01).unwrap();
     // Position of both axes; the filter believes σ = 1 m, the truth is 2 m.
     let sensor = Selection::<f64, 4, 2>::new([0, 2], Matrix2::identity()).expect("indices below 4");
     let p0 = Matrix4::identity() * 10.0;

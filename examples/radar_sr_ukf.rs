@@ -18,7 +18,7 @@ impl MeasurementModel<f64, 4, 2> for Radar {
     }
 }
 fn main() -> Result<(), kestrel::FilterError> {
-    let motion = ConstantVelocity2d::new(0.1); // white acceleration, m²/s³
+    let motion = ConstantVelocity2d::new(0.1).unwrap(); // white acceleration, m²/s³
     let p0 = Matrix4::from_diagonal(&Vector4::new(400.0, 25.0, 400.0, 25.0));
     let mut filter = SrUkf::new(Vector4::new(-900.0, 0.0, 20.0, 0.0), p0)?;
     let mut truth = Vector4::new(-1000.0, 0.0, 300.0, -6.0); // crosses bearing ±π

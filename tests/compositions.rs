@@ -323,13 +323,13 @@ macro_rules! stack_all_forms {
 }
 
 fn cv1(q: f64) -> ConstantVelocity1d<f64> {
-    ConstantVelocity1d::new(q)
+    ConstantVelocity1d::new(q).unwrap()
 }
 
 /// `Stack::new` with inferred sizes: constant velocity and a clock bias.
 #[test]
 fn stack_of_two() {
-    let bias = RandomWalk::<f64, 1>::uniform(0.5);
+    let bias = RandomWalk::<f64, 1>::uniform(0.5).unwrap();
     stack_all_forms!("cv+rw", [3; 2, 1], Stack::new(cv1(0.1), bias), cv1(0.1), bias, 1e-10);
 }
 
@@ -337,8 +337,8 @@ fn stack_of_two() {
 /// a Gauss-Markov drift, `Stack::<_, _, 3, 1>::new(Stack::new(cv, bias), drift)`.
 #[test]
 fn documented_stack_of_three() {
-    let bias = RandomWalk::new(Vector1::new(4.0));
-    let drift = GaussMarkov::<f64, 1>::uniform(0.5 / core::f64::consts::LN_2, 1.0);
+    let bias = RandomWalk::new(Vector1::new(4.0)).unwrap();
+    let drift = GaussMarkov::<f64, 1>::uniform(0.5 / core::f64::consts::LN_2, 1.0).unwrap();
     let inner = Stack::new(cv1(0.1), bias);
     stack_all_forms!(
         "(cv+rw)+gm",
@@ -353,9 +353,9 @@ fn documented_stack_of_three() {
 /// `Stack<Stack<A, B, 2, 2>, C, 4, 1>`, a 5-state model.
 #[test]
 fn nested_two_two_one() {
-    let gm = GaussMarkov::<f64, 2>::uniform(2.0, 0.5);
+    let gm = GaussMarkov::<f64, 2>::uniform(2.0, 0.5).unwrap();
     let inner = Stack::<_, _, 2, 2>::new(cv1(1.0), gm);
-    let rw = RandomWalk::<f64, 1>::uniform(0.1);
+    let rw = RandomWalk::<f64, 1>::uniform(0.1).unwrap();
     stack_all_forms!(
         "(cv+gm2)+rw",
         [5; 4, 1],
@@ -370,12 +370,13 @@ fn nested_two_two_one() {
 /// seven states.
 #[test]
 fn nested_seven_states() {
-    let cv = ConstantVelocity2d::new(2.0);
+    let cv = ConstantVelocity2d::new(2.0).unwrap();
     let gm = GaussMarkov::new(
         kestrel::nalgebra::Vector2::new(1.0, 2.0),
         kestrel::nalgebra::Vector2::new(0.5, 1.5),
-    );
-    let rw = RandomWalk::new(Vector1::new(3.0));
+    )
+    .unwrap();
+    let rw = RandomWalk::new(Vector1::new(3.0)).unwrap();
     let inner = Stack::new(cv, gm);
     stack_all_forms!(
         "(cv2d+gm2)+rw",
@@ -390,7 +391,7 @@ fn nested_seven_states() {
 /// Single precision: constant acceleration and a random walk.
 #[test]
 fn stack_in_f32() {
-    let ca = ConstantAcceleration1d::new(1.0_f32);
-    let rw = RandomWalk::<f32, 1>::uniform(2.0);
+    let ca = ConstantAcceleration1d::new(1.0_f32).unwrap();
+    let rw = RandomWalk::<f32, 1>::uniform(2.0).unwrap();
     stack_all_forms!("ca+rw f32", [4; 3, 1], Stack::new(ca, rw), ca, rw, 1e-4_f32);
 }

@@ -1,7 +1,8 @@
 //! Quantiles of the χ² distribution, for innovation tests whose threshold is
 //! `χ²_p(m)` with `m` the measurement dimension.
 
-use kestrel_core::FilterError;
+use kestrel_core::real::{lit, to_f64};
+use kestrel_core::{FilterError, Real};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 
 /// The `probability` quantile of the χ² distribution with `dof` degrees of
@@ -53,4 +54,30 @@ pub fn chi_square_quantile(probability: f64, dof: usize) -> Result<f64, FilterEr
             valid: "0 < probability < 1",
         })
     }
+}
+
+/// The threshold `χ²_{1−significance}(dof)` of an innovation test at
+/// `significance` (the probability that a consistent innovation fails it),
+/// in the filter's scalar.
+///
+/// # Errors
+/// [`FilterError::InvalidParameter`] `"significance"` unless
+/// `0 < significance < 1`, `"dof"` if `dof == 0`.
+///
+/// ```
+/// use kestrel_adaptive::significance_threshold;
+/// let c: f32 = significance_threshold(0.05_f32, 2).unwrap();
+/// assert!((c - 5.991).abs() < 1e-3);
+/// let e = significance_threshold(1.5_f64, 2).unwrap_err();
+/// assert_eq!(e.to_string(), "parameter significance is out of range: it must be 0 < significance < 1");
+/// ```
+pub fn significance_threshold<T: Real>(significance: T, dof: usize) -> Result<T, FilterError> {
+    let s = to_f64(significance);
+    if !(s > 0.0 && s < 1.0) {
+        return Err(FilterError::InvalidParameter {
+            name: "significance",
+            valid: "0 < significance < 1",
+        });
+    }
+    Ok(lit(chi_square_quantile(1.0 - s, dof)?))
 }

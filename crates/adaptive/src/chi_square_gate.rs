@@ -1,10 +1,9 @@
 //! The plain innovation χ² gate: reject, do not reweight.
 
 use kestrel_core::adapter::{GainStep, NoiseAdapter, PriorAdapter};
-use kestrel_core::real::lit;
 use kestrel_core::{FilterError, Real};
 
-use crate::chi_square::chi_square_quantile;
+use crate::chi_square::significance_threshold;
 
 /// What [`ChiSquareGate`] did in one update.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -61,11 +60,11 @@ impl<T: Real, const M: usize> ChiSquareGate<T, M> {
     /// `χ²_{1−significance}(M)`.
     ///
     /// # Errors
-    /// `InvalidParameter { name: "probability", valid: "0 < probability < 1" }` for a significance
-    /// outside `(0, 1)`, or `"dof"` for `M = 0`.
-    pub fn new(significance: f64) -> Result<Self, FilterError> {
+    /// [`FilterError::InvalidParameter`] `"significance"` outside `(0, 1)`,
+    /// or `"dof"` for `M = 0`.
+    pub fn new(significance: T) -> Result<Self, FilterError> {
         Ok(Self {
-            threshold: lit(chi_square_quantile(1.0 - significance, M)?),
+            threshold: significance_threshold(significance, M)?,
         })
     }
 

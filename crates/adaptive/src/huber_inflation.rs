@@ -2,10 +2,10 @@
 
 use kestrel_core::adapter::{GainStep, NoiseAdapter, PriorAdapter};
 use kestrel_core::nalgebra::{SMatrix, SVector};
-use kestrel_core::real::{epsilon, lit};
+use kestrel_core::real::{epsilon, lit, to_f64};
 use kestrel_core::{FilterError, Real};
 
-use crate::chi_square::chi_square_quantile;
+use crate::chi_square::significance_threshold;
 
 /// How the per-component factors `αᵢ` inflate a measurement noise `R` that
 /// is not diagonal. Both give `R̄ᵢᵢ = Rᵢᵢ / αᵢ` on a diagonal `R`.
@@ -134,18 +134,19 @@ impl<T: Real, const M: usize> HuberInflation<T, M> {
     /// default [`InflationShape::Congruence`].
     ///
     /// # Errors
-    /// `InvalidParameter { name: "significance", valid: "0 < significance < 1" }` outside the range, or
-    /// `"dof"` for `M = 0`.
-    pub fn new(significance: f64) -> Result<Self, FilterError> {
-        if !(Self::MIN_SIGNIFICANCE..=Self::MAX_SIGNIFICANCE).contains(&significance) {
+    /// [`FilterError::InvalidParameter`] `"significance"` outside
+    /// `[0.01, 0.15]` (the error states the range), or `"dof"` for `M = 0`.
+    pub fn new(significance: T) -> Result<Self, FilterError> {
+        let range = Self::MIN_SIGNIFICANCE..=Self::MAX_SIGNIFICANCE;
+        if !range.contains(&to_f64(significance)) {
             return Err(FilterError::InvalidParameter {
                 name: "significance",
-                valid: "0 < significance < 1",
+                valid: "0.01 ≤ significance ≤ 0.15 (the range the test is built for)",
             });
         }
         Ok(Self {
-            global_threshold: lit(chi_square_quantile(1.0 - significance, M)?),
-            component_threshold: lit(chi_square_quantile(1.0 - significance, 1)?),
+            global_threshold: significance_threshold(significance, M)?,
+            component_threshold: significance_threshold(significance, 1)?,
             shape: InflationShape::default(),
         })
     }
@@ -155,7 +156,7 @@ impl<T: Real, const M: usize> HuberInflation<T, M> {
     /// # Errors
     /// `InvalidParameter { name: "dof", valid: "at least 1 (the measurement dimension M)" }` for `M = 0`.
     pub fn paper() -> Result<Self, FilterError> {
-        Self::new(Self::PAPER_SIGNIFICANCE)
+        Self::new(lit(Self::PAPER_SIGNIFICANCE))
     }
 
     /// The same test inflating a full `R` with `shape`.

@@ -125,7 +125,7 @@ impl<T: Real, const M: usize> ImprovedAdaptive<T, M> {
     /// # Errors
     /// The first invalid parameter, as reported by [`SageHusa::new`],
     /// [`OutlierCompression::new`] or [`DivergenceFading::new`].
-    pub fn with_params(b: T, alpha: f64, reserve: T, max_fade: T) -> Result<Self, FilterError> {
+    pub fn with_params(b: T, alpha: T, reserve: T, max_fade: T) -> Result<Self, FilterError> {
         Ok(Self::new(
             (
                 OutlierCompression::new(alpha)?,
@@ -166,7 +166,7 @@ impl<T: Real, const M: usize> ImprovedAdaptive<T, M> {
                 OutlierCompression::paper()?,
                 DivergenceFading::new(lit(3.0), lit(100.0))?,
             ),
-            SageHusa::paper(),
+            SageHusa::paper()?,
         ))
     }
 }
@@ -193,7 +193,7 @@ impl<T: Real, const M: usize> SageHusaFading<T, M> {
     pub fn paper000() -> Result<Self, FilterError> {
         Ok(Self::new(
             DivergenceFading::new(lit(3.0), lit(100.0))?,
-            SageHusa::paper(),
+            SageHusa::paper()?,
         ))
     }
 }

@@ -60,7 +60,7 @@
 pub use kestrel_core::adapter::{NoiseAdapter, PriorAdapter};
 
 mod chi_square;
-pub use chi_square::chi_square_quantile;
+pub use chi_square::{chi_square_quantile, significance_threshold};
 
 mod divergence_fading;
 mod improved;

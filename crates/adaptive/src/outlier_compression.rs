@@ -4,7 +4,7 @@ use kestrel_core::adapter::{GainStep, NoiseAdapter, PriorAdapter};
 use kestrel_core::real::lit;
 use kestrel_core::{FilterError, Real};
 
-use crate::chi_square_quantile;
+use crate::chi_square::significance_threshold;
 
 /// Compression of an outlying innovation, paper 000, eq. 13–14: with
 /// `τ = νᵀ C⁻¹ ν` (`C = H P⁻ Hᵀ + R`) and the threshold `c = χ²_{1−α}(m)`,
@@ -67,14 +67,15 @@ impl<T: Real> Default for CompressionReport<T> {
 }
 
 impl<T: Real, const M: usize> OutlierCompression<T, M> {
-    /// Compression at significance `alpha` (`c = χ²_{1−α}(M)`).
+    /// Compression at significance `significance` (`c = χ²_{1−α}(M)`).
     ///
     /// # Errors
-    /// [`FilterError::InvalidParameter`] `"probability"` unless
+    /// [`FilterError::InvalidParameter`] `"significance"` unless
     /// `0 < α < 1`; `"dof"` if `M = 0`.
-    pub fn new(alpha: f64) -> Result<Self, FilterError> {
-        let c = chi_square_quantile(1.0 - alpha, M)?;
-        Ok(Self { threshold: lit(c) })
+    pub fn new(significance: T) -> Result<Self, FilterError> {
+        Ok(Self {
+            threshold: significance_threshold(significance, M)?,
+        })
     }
 
     /// Compression at the paper's `α = 0.05`.
@@ -82,7 +83,7 @@ impl<T: Real, const M: usize> OutlierCompression<T, M> {
     /// # Errors
     /// `"dof"` if `M = 0`.
     pub fn paper() -> Result<Self, FilterError> {
-        Self::new(0.05)
+        Self::new(lit(0.05))
     }
 
     /// Compression with the threshold `c` given directly (`c > 0`, finite).

@@ -141,8 +141,12 @@ impl<T: Real, const M: usize> SageHusa<T, M> {
 
     /// The paper's set-up: `b = 0.95`, the fast end of its range, so that
     /// `R̂` follows a change of the noise level within about 20 epochs.
-    pub fn paper() -> Self {
-        Self::unchecked(lit(0.95))
+    ///
+    /// # Errors
+    /// None for this `b`; the `Result` keeps one rule for every adapter's
+    /// constructor.
+    pub fn paper() -> Result<Self, FilterError> {
+        Self::new(lit(0.95))
     }
 
     /// Starts from `R̂_0 = r0` (lower triangle used) instead of the first

@@ -53,7 +53,7 @@ fn run<T: Real>(zs: &Readings<T>) -> (usize, usize) {
     );
     let mut fed = FederatedFilter::new(locals, Sharing::edop(), x0(), p0())
         .unwrap()
-        .with_isolation(Isolation::new(0.01, 2, 2).unwrap());
+        .with_isolation(Isolation::new(kestrel_core::real::lit(0.01), 2, 2).unwrap());
     let (mut isolated, mut readmitted) = (0, 0);
     let mut was = [true; 3];
     for (za, zb, zc) in zs {

@@ -146,7 +146,7 @@ struct CompressionConfig {
 impl Build for CompressionConfig {
     type A<T: Real> = OutlierCompression<T, 2>;
     fn build<T: Real>(&self) -> Self::A<T> {
-        OutlierCompression::new(self.alpha).unwrap()
+        OutlierCompression::new(kestrel_core::real::lit(self.alpha)).unwrap()
     }
 }
 
@@ -162,7 +162,7 @@ impl Build for ImprovedConfig {
     fn build<T: Real>(&self) -> Self::A<T> {
         SageHusaComposition::new(
             (
-                OutlierCompression::new(self.alpha).unwrap(),
+                OutlierCompression::new(kestrel_core::real::lit(self.alpha)).unwrap(),
                 self.fading.fading(),
             ),
             self.sh.sage_husa(),
@@ -202,7 +202,7 @@ impl Build for TupleConfig {
     type A<T: Real> = (OutlierCompression<T, 2>, StrongTracking<T>, SageHusa<T, 2>);
     fn build<T: Real>(&self) -> Self::A<T> {
         (
-            OutlierCompression::new(self.alpha).unwrap(),
+            OutlierCompression::new(kestrel_core::real::lit(self.alpha)).unwrap(),
             self.st.build(),
             self.sh.sage_husa(),
         )

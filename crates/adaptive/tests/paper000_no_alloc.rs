@@ -92,7 +92,7 @@ fn every_form<T: Real, A: NoiseAdapter<T, 2> + Clone>(
 }
 
 fn all_adapters<T: Real>() {
-    every_form(SageHusa::<T, 2>::paper(), |name, reports| {
+    every_form(SageHusa::<T, 2>::paper().unwrap(), |name, reports| {
         assert!(reports.iter().all(|a| a.estimated), "{name}");
     });
     every_form(
@@ -144,7 +144,7 @@ fn all_adapters<T: Real>() {
         (
             OutlierCompression::<T, 2>::paper().unwrap(),
             StrongTracking::<T>::new(to(0.95), to(1.0)).unwrap(),
-            SageHusa::<T, 2>::paper(),
+            SageHusa::<T, 2>::paper().unwrap(),
         ),
         |name, reports| {
             let skipped = reports.iter().filter(|a| a.2.skipped_for_fade).count();

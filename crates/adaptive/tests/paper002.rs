@@ -58,7 +58,7 @@ fn thresholds_are_the_chi_square_quantiles() {
     assert!((chi_square_quantile(0.95, 2).unwrap() - T2).abs() < 1e-9);
     let bad = Some(FilterError::InvalidParameter {
         name: "significance",
-        valid: "0 < significance < 1",
+        valid: "0.01 ≤ significance ≤ 0.15 (the range the test is built for)",
     });
     assert_eq!(HuberInflation::<f64, 2>::new(0.009).err(), bad);
     assert_eq!(HuberInflation::<f64, 2>::new(0.151).err(), bad);
@@ -317,8 +317,8 @@ fn gate_hand_epochs() {
     assert_eq!(
         ChiSquareGate::<f64, 2>::new(1.0).err(),
         Some(FilterError::InvalidParameter {
-            name: "probability",
-            valid: "0 < probability < 1"
+            name: "significance",
+            valid: "0 < significance < 1"
         })
     );
 }

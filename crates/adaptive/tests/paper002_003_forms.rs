@@ -161,13 +161,13 @@ proptest! {
     fn huber_keeps_p_and_r_spd(case in case()) {
         all_forms!(case, |T| |c: &Case| {
             let shape = if c.diagonal { InflationShape::Diagonal } else { InflationShape::Congruence };
-            HuberInflation::<T, 2>::new(c.significance).unwrap().with_shape(shape)
+            HuberInflation::<T, 2>::new(kestrel_core::real::lit(c.significance)).unwrap().with_shape(shape)
         }, |_: &Case| Nothing);
     }
 
     #[test]
     fn gate_keeps_p_and_r_spd(case in case()) {
-        all_forms!(case, |T| |c: &Case| ChiSquareGate::<T, 2>::new(c.gate).unwrap(),
+        all_forms!(case, |T| |c: &Case| ChiSquareGate::<T, 2>::new(kestrel_core::real::lit(c.gate)).unwrap(),
             |_: &Case| Nothing);
     }
 
@@ -175,7 +175,7 @@ proptest! {
     fn fuzzy_gain_keeps_p_and_r_spd(case in case()) {
         all_forms!(case, |T| |c: &Case| {
             let engine = *FuzzyGain::<T, 2>::odometer().unwrap().engine();
-            FuzzyGain::<T, 2>::new(engine, kestrel_adaptive::ODOMETER_UNUSABLE, c.smoothing)
+            FuzzyGain::<T, 2>::new(engine, kestrel_adaptive::ODOMETER_UNUSABLE, kestrel_core::real::lit(c.smoothing))
                 .unwrap()
         }, inputs);
     }
@@ -194,7 +194,7 @@ proptest! {
             FuzzyGain::<T, 2>::new(
                 kestrel_adaptive::odometer_engine().unwrap(),
                 kestrel_adaptive::ODOMETER_UNUSABLE,
-                c.smoothing,
+                to(c.smoothing),
             ).unwrap(),
             WindowedNoise::<T, 2, 8>::new(to(c.floor)).unwrap(),
         ), inputs);

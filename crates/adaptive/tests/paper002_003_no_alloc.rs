@@ -114,7 +114,7 @@ fn all_adapters<T: Real>() {
         },
     );
     every_form(
-        ChiSquareGate::<T, 2>::new(0.01).unwrap(),
+        ChiSquareGate::<T, 2>::new(kestrel_core::real::lit(0.01)).unwrap(),
         no_inputs,
         |name, reports| {
             let rejected = reports.iter().filter(|(r, _)| *r).count();
@@ -145,7 +145,7 @@ fn all_adapters<T: Real>() {
     );
     every_form(
         (
-            ChiSquareGate::<T, 2>::new(0.01).unwrap(),
+            ChiSquareGate::<T, 2>::new(kestrel_core::real::lit(0.01)).unwrap(),
             FuzzyGain::<T, 2>::odometer().unwrap(),
             WindowedNoise::<T, 2, 10>::new(to(0.5)).unwrap(),
             HuberInflation::<T, 2>::paper().unwrap(),

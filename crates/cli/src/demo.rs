@@ -53,13 +53,13 @@ pub fn run(args: &DemoArgs) -> Result<(), String> {
     if args.runs == 0 || args.steps == 0 {
         return Err("--runs and --steps must be at least 1".into());
     }
-    let cv = ConstantVelocity2d::new(ACCEL_PSD);
+    let cv = ConstantVelocity2d::new(ACCEL_PSD).map_err(|e| e.to_string())?;
     let radar = RangeBearing::<f64, 4>::new(
         0,
         2,
         Matrix2::new(RANGE_SIGMA.powi(2), 0.0, 0.0, BEARING_SIGMA.powi(2)),
     )
-    .ok_or("radar indices")?;
+    .map_err(|e| e.to_string())?;
     let p0 = Matrix4::from_diagonal(&Vector4::new(
         50.0_f64.powi(2),
         5.0_f64.powi(2),

@@ -36,3 +36,16 @@ pub fn lit<T: Real>(value: f64) -> T {
 pub fn epsilon<T: Real>() -> T {
     T::default_epsilon()
 }
+
+/// Converts a `T` into `f64` (exact for `f32` and `f64`; NaN for a value a
+/// custom scalar cannot express), for printing, statistics and parameters
+/// computed in double precision.
+///
+/// ```
+/// assert_eq!(kestrel_core::real::to_f64(0.1_f32), 0.1_f32 as f64);
+/// assert_eq!(kestrel_core::real::to_f64(0.1_f64), 0.1);
+/// ```
+#[inline]
+pub fn to_f64<T: Real>(value: T) -> f64 {
+    nalgebra::try_convert(value).unwrap_or(f64::NAN)
+}

@@ -167,7 +167,7 @@ where
     for pair in ys.iter_mut() {
         for v in pair.iter_mut() {
             *v = model.propagate(v, dt);
-            ensure_finite(&v, Quantity::PropagatedState)?;
+            ensure_finite(v, Quantity::PropagatedState)?;
         }
     }
     let mut acc = SVector::<T, N>::zeros();
@@ -224,7 +224,7 @@ where
     for (zp, cp) in zs.iter_mut().zip(&chi) {
         for (zv, cv) in zp.iter_mut().zip(cp) {
             *zv = model.predict(cv);
-            ensure_finite(&zv, Quantity::PredictedMeasurement)?;
+            ensure_finite(zv, Quantity::PredictedMeasurement)?;
             acc += model.residual(zv, &z0);
         }
     }

@@ -2,7 +2,7 @@
 //! stored contiguously for each of up to three axes.
 
 use kestrel_core::nalgebra::{SMatrix, SVector};
-use kestrel_core::Real;
+use kestrel_core::{FilterError, Real};
 
 /// The block-diagonal matrix with `block(axis)` on the `K × K` diagonal
 /// block of each of the `N / K` axes.
@@ -38,22 +38,38 @@ pub(crate) struct Densities<T> {
     axes: usize,
 }
 
+/// A spectral density out of range.
+const NEGATIVE: FilterError = FilterError::InvalidParameter {
+    name: "q",
+    valid: "finite and at least 0 on every axis",
+};
+
 impl<T: Real> Densities<T> {
-    pub(crate) fn uniform(q: T, axes: usize) -> Self {
-        Self {
+    /// The same density on every axis; refused unless finite and `≥ 0`.
+    pub(crate) fn uniform(q: T, axes: usize) -> Result<Self, FilterError> {
+        if !(q.is_finite() && q >= T::zero()) {
+            return Err(NEGATIVE);
+        }
+        Ok(Self {
             values: [q; 3],
             axes,
-        }
+        })
     }
 
-    /// `None` unless `q` has exactly `axes` entries.
-    pub(crate) fn per_axis(q: &[T], axes: usize) -> Option<Self> {
+    /// Refused unless `q` has exactly `axes` entries, each finite and `≥ 0`.
+    pub(crate) fn per_axis(q: &[T], axes: usize) -> Result<Self, FilterError> {
         if q.len() != axes {
-            return None;
+            return Err(FilterError::InvalidParameter {
+                name: "q",
+                valid: "one density per axis (N / 2 of a constant-velocity, N / 3 of a constant-acceleration model)",
+            });
+        }
+        if !q.iter().all(|v| v.is_finite() && *v >= T::zero()) {
+            return Err(NEGATIVE);
         }
         let mut values = [T::zero(); 3];
         values[..axes].copy_from_slice(q);
-        Some(Self { values, axes })
+        Ok(Self { values, axes })
     }
 
     pub(crate) fn as_slice(&self) -> &[T] {

@@ -2,17 +2,18 @@
 
 use kestrel_core::nalgebra::{Matrix3, SMatrix, SVector};
 use kestrel_core::real::lit;
-use kestrel_core::{LinearizedProcess, ProcessModel, Real};
+use kestrel_core::{FilterError, LinearizedProcess, ProcessModel, Real};
 
 use crate::axes::{apply_per_axis, block_diagonal, Densities};
+use crate::sizes::{AccelerationAxes, Size};
 
 /// Constant acceleration in 1 to 3 axes, driven by continuous white jerk
 /// noise of spectral density `q` [unit²/s⁵] per axis (the Wiener-process
 /// acceleration model).
 ///
 /// The state is interleaved per axis: `[p₁, v₁, a₁, p₂, v₂, a₂, …]`, so `N`
-/// is 3, 6 or 9; any other `N` is a compile error when the model is built
-/// (evaluated at monomorphisation, so `cargo check` does not report it).
+/// is 3, 6 or 9; any other `N` is a type error that `cargo check` reports
+/// ([`AccelerationAxes`](crate::AccelerationAxes)).
 /// For each axis, over `dt`:
 ///
 /// `Φ = [[1, dt, dt²/2], [0, 1, dt], [0, 0, 1]]`,
@@ -21,7 +22,7 @@ use crate::axes::{apply_per_axis, block_diagonal, Densities};
 /// ```
 /// use kestrel_models::ConstantAcceleration1d;
 /// use kestrel_core::{LinearizedProcess, ProcessModel, nalgebra::Vector3};
-/// let ca = ConstantAcceleration1d::new(6.0);
+/// let ca = ConstantAcceleration1d::new(6.0).unwrap();
 /// let x = Vector3::new(0.0, 1.0, 2.0);
 /// assert_eq!(ca.propagate(&x, 2.0), Vector3::new(6.0, 5.0, 2.0));
 /// assert_eq!(ca.transition(&x, 2.0)[(0, 2)], 2.0);
@@ -29,12 +30,15 @@ use crate::axes::{apply_per_axis, block_diagonal, Densities};
 /// assert_eq!((q[(0, 2)], q[(1, 2)], q[(2, 2)]), (1.0, 3.0, 6.0));
 /// ```
 ///
-/// ```compile_fail,E0080
+/// ```compile_fail,E0277
 /// use kestrel_models::ConstantAcceleration;
-/// let ca = ConstantAcceleration::<f64, 4>::new(1.0);
+/// let ca = ConstantAcceleration::<f64, 4>::new(1.0).unwrap();
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ConstantAcceleration<T: Real, const N: usize> {
+pub struct ConstantAcceleration<T: Real, const N: usize>
+where
+    Size<N>: AccelerationAxes,
+{
     q: Densities<T>,
 }
 
@@ -45,28 +49,27 @@ pub type ConstantAcceleration2d<T> = ConstantAcceleration<T, 6>;
 /// Constant acceleration in space, three `[p, v, a]` blocks.
 pub type ConstantAcceleration3d<T> = ConstantAcceleration<T, 9>;
 
-/// The number of axes, rejecting sizes other than 3, 6, 9 at compile time.
+/// The number of axes.
 const fn axes<const N: usize>() -> usize {
-    const {
-        assert!(
-            N == 3 || N == 6 || N == 9,
-            "ConstantAcceleration needs N = 3, 6 or 9 (1 to 3 axes of [p, v, a])"
-        );
-    }
     N / 3
 }
 
-impl<T: Real, const N: usize> ConstantAcceleration<T, N> {
+impl<T: Real, const N: usize> ConstantAcceleration<T, N>
+where
+    Size<N>: AccelerationAxes,
+{
     /// The same jerk density `q ≥ 0` [unit²/s⁵] on every axis.
-    pub fn new(q: T) -> Self {
-        Self {
-            q: Densities::uniform(q, axes::<N>()),
-        }
+    pub fn new(q: T) -> Result<Self, FilterError> {
+        Ok(Self {
+            q: Densities::uniform(q, axes::<N>())?,
+        })
     }
 
     /// One density per axis; `None` unless `q` has `N / 3` entries.
-    pub fn per_axis(q: &[T]) -> Option<Self> {
-        Densities::per_axis(q, axes::<N>()).map(|q| Self { q })
+    pub fn per_axis(q: &[T]) -> Result<Self, FilterError> {
+        Ok(Self {
+            q: Densities::per_axis(q, axes::<N>())?,
+        })
     }
 
     /// The jerk densities, one per axis.
@@ -80,14 +83,15 @@ impl<T: Real, const N: usize> ConstantAcceleration<T, N> {
     }
 }
 
-impl<T: Real, const N: usize> ProcessModel<T, N> for ConstantAcceleration<T, N> {
+impl<T: Real, const N: usize> ProcessModel<T, N> for ConstantAcceleration<T, N>
+where
+    Size<N>: AccelerationAxes,
+{
     fn propagate(&self, x: &SVector<T, N>, dt: T) -> SVector<T, N> {
-        axes::<N>();
         apply_per_axis(&Self::axis_transition(dt), x)
     }
 
     fn noise(&self, _x: &SVector<T, N>, dt: T) -> SMatrix<T, N, N> {
-        axes::<N>();
         let d2 = dt * dt;
         let (d3, d4) = (d2 * dt, d2 * d2);
         let (a, b, c) = (d4 * dt / lit(20.0), d4 / lit(8.0), d3 / lit(6.0));
@@ -97,9 +101,11 @@ impl<T: Real, const N: usize> ProcessModel<T, N> for ConstantAcceleration<T, N> 
     }
 }
 
-impl<T: Real, const N: usize> LinearizedProcess<T, N> for ConstantAcceleration<T, N> {
+impl<T: Real, const N: usize> LinearizedProcess<T, N> for ConstantAcceleration<T, N>
+where
+    Size<N>: AccelerationAxes,
+{
     fn transition(&self, _x: &SVector<T, N>, dt: T) -> SMatrix<T, N, N> {
-        axes::<N>();
         block_diagonal::<T, N, 3>(|_| Self::axis_transition(dt))
     }
 }
@@ -111,7 +117,7 @@ mod tests {
 
     #[test]
     fn one_axis_hand_computed() {
-        let ca = ConstantAcceleration1d::new(2.0);
+        let ca = ConstantAcceleration1d::new(2.0).unwrap();
         // dt = 2: q [[32/20, 16/8, 8/6], [2, 8/3, 2], [4/3, 2, 2]] with q = 2.
         #[rustfmt::skip]
         let want = Matrix3::new(
@@ -140,12 +146,12 @@ mod tests {
         assert_eq!(q[(3, 5)], 3.0 / 6.0);
         assert_eq!(q[(0, 3)], 0.0);
         assert_eq!(q[(2, 5)], 0.0);
-        assert!(ConstantAcceleration2d::<f64>::per_axis(&[1.0]).is_none());
+        assert!(ConstantAcceleration2d::<f64>::per_axis(&[1.0]).is_err());
     }
 
     #[test]
     fn matches_van_loan() {
-        let ca = ConstantAcceleration::<f64, 9>::new(0.4);
+        let ca = ConstantAcceleration::<f64, 9>::new(0.4).unwrap();
         let f = Matrix3::new(0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0);
         let (_, want) = crate::van_loan(&f, &Vector3::new(0.0, 0.0, 1.0), &Matrix1::new(0.4), 1.7);
         let q = ca.noise(&SVector::zeros(), 1.7);

@@ -2,17 +2,18 @@
 
 use kestrel_core::nalgebra::{Matrix2, SMatrix, SVector};
 use kestrel_core::real::lit;
-use kestrel_core::{LinearizedProcess, ProcessModel, Real};
+use kestrel_core::{FilterError, LinearizedProcess, ProcessModel, Real};
 
 use crate::axes::{apply_per_axis, block_diagonal, Densities};
+use crate::sizes::{Size, VelocityAxes};
 
 /// Constant velocity in 1 to 3 axes, driven by continuous white acceleration
 /// noise of spectral density `q` [unit²/s³] per axis (the nearly constant
 /// velocity model).
 ///
 /// The state is interleaved per axis: `[p₁, v₁, p₂, v₂, …]`, so `N` is 2, 4
-/// or 6; any other `N` is a compile error when the model is built (evaluated
-/// at monomorphisation, so `cargo check` does not report it). For each
+/// or 6; any other `N` is a type error that `cargo check` reports
+/// ([`VelocityAxes`](crate::VelocityAxes)). For each
 /// axis, over `dt`:
 ///
 /// `Φ = [[1, dt], [0, 1]]`, `Q = q [[dt³/3, dt²/2], [dt²/2, dt]]`.
@@ -33,12 +34,15 @@ use crate::axes::{apply_per_axis, block_diagonal, Densities};
 ///
 /// An odd state size does not build:
 ///
-/// ```compile_fail,E0080
+/// ```compile_fail,E0277
 /// use kestrel_models::ConstantVelocity;
-/// let cv = ConstantVelocity::<f64, 3>::new(1.0);
+/// let cv = ConstantVelocity::<f64, 3>::new(1.0).unwrap();
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ConstantVelocity<T: Real, const N: usize> {
+pub struct ConstantVelocity<T: Real, const N: usize>
+where
+    Size<N>: VelocityAxes,
+{
     q: Densities<T>,
 }
 
@@ -49,28 +53,27 @@ pub type ConstantVelocity2d<T> = ConstantVelocity<T, 4>;
 /// Constant velocity in space: `[pₓ, vₓ, p_y, v_y, p_z, v_z]`.
 pub type ConstantVelocity3d<T> = ConstantVelocity<T, 6>;
 
-/// The number of axes, rejecting sizes other than 2, 4, 6 at compile time.
+/// The number of axes.
 const fn axes<const N: usize>() -> usize {
-    const {
-        assert!(
-            N == 2 || N == 4 || N == 6,
-            "ConstantVelocity needs N = 2, 4 or 6 (1 to 3 axes of [p, v])"
-        );
-    }
     N / 2
 }
 
-impl<T: Real, const N: usize> ConstantVelocity<T, N> {
+impl<T: Real, const N: usize> ConstantVelocity<T, N>
+where
+    Size<N>: VelocityAxes,
+{
     /// The same acceleration density `q ≥ 0` [unit²/s³] on every axis.
-    pub fn new(q: T) -> Self {
-        Self {
-            q: Densities::uniform(q, axes::<N>()),
-        }
+    pub fn new(q: T) -> Result<Self, FilterError> {
+        Ok(Self {
+            q: Densities::uniform(q, axes::<N>())?,
+        })
     }
 
     /// One density per axis; `None` unless `q` has `N / 2` entries.
-    pub fn per_axis(q: &[T]) -> Option<Self> {
-        Densities::per_axis(q, axes::<N>()).map(|q| Self { q })
+    pub fn per_axis(q: &[T]) -> Result<Self, FilterError> {
+        Ok(Self {
+            q: Densities::per_axis(q, axes::<N>())?,
+        })
     }
 
     /// The acceleration densities, one per axis.
@@ -83,23 +86,26 @@ impl<T: Real, const N: usize> ConstantVelocity<T, N> {
     }
 }
 
-impl<T: Real, const N: usize> ProcessModel<T, N> for ConstantVelocity<T, N> {
+impl<T: Real, const N: usize> ProcessModel<T, N> for ConstantVelocity<T, N>
+where
+    Size<N>: VelocityAxes,
+{
     fn propagate(&self, x: &SVector<T, N>, dt: T) -> SVector<T, N> {
-        axes::<N>();
         apply_per_axis(&Self::axis_transition(dt), x)
     }
 
     fn noise(&self, _x: &SVector<T, N>, dt: T) -> SMatrix<T, N, N> {
-        axes::<N>();
         let (d2, d3) = (dt * dt * lit(0.5), dt * dt * dt / lit(3.0));
         let unit = Matrix2::new(d3, d2, d2, dt);
         block_diagonal::<T, N, 2>(|axis| unit * self.q.get(axis))
     }
 }
 
-impl<T: Real, const N: usize> LinearizedProcess<T, N> for ConstantVelocity<T, N> {
+impl<T: Real, const N: usize> LinearizedProcess<T, N> for ConstantVelocity<T, N>
+where
+    Size<N>: VelocityAxes,
+{
     fn transition(&self, _x: &SVector<T, N>, dt: T) -> SMatrix<T, N, N> {
-        axes::<N>();
         block_diagonal::<T, N, 2>(|_| Self::axis_transition(dt))
     }
 }
@@ -111,7 +117,7 @@ mod tests {
 
     #[test]
     fn one_axis_hand_computed() {
-        let cv = ConstantVelocity1d::new(0.3);
+        let cv = ConstantVelocity1d::new(0.3).unwrap();
         let x = Vector2::new(10.0, -2.0);
         assert_eq!(cv.propagate(&x, 2.0), Vector2::new(6.0, -2.0));
         // dt = 2: q [[8/3, 2], [2, 2]]
@@ -146,14 +152,17 @@ mod tests {
 
     #[test]
     fn per_axis_length_checked() {
-        assert!(ConstantVelocity2d::<f64>::per_axis(&[1.0]).is_none());
-        assert!(ConstantVelocity2d::<f64>::per_axis(&[1.0, 2.0, 3.0]).is_none());
-        assert_eq!(ConstantVelocity2d::new(1.5).densities(), &[1.5, 1.5]);
+        assert!(ConstantVelocity2d::<f64>::per_axis(&[1.0]).is_err());
+        assert!(ConstantVelocity2d::<f64>::per_axis(&[1.0, 2.0, 3.0]).is_err());
+        assert_eq!(
+            ConstantVelocity2d::new(1.5).unwrap().densities(),
+            &[1.5, 1.5]
+        );
     }
 
     #[test]
     fn matches_van_loan() {
-        let cv = ConstantVelocity1d::new(0.7);
+        let cv = ConstantVelocity1d::new(0.7).unwrap();
         let f = Matrix2::new(0.0, 1.0, 0.0, 0.0);
         let g = Vector2::new(0.0, 1.0);
         let (_, want) = crate::van_loan(&f, &g, &kestrel_core::nalgebra::Matrix1::new(0.7), 3.0);

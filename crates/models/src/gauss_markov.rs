@@ -1,7 +1,7 @@
 //! First-order Gauss-Markov states (exponentially correlated noise).
 
 use kestrel_core::nalgebra::{SMatrix, SVector};
-use kestrel_core::{LinearizedProcess, ProcessModel, Real};
+use kestrel_core::{FilterError, LinearizedProcess, ProcessModel, Real};
 
 /// `N` independent first-order Gauss-Markov processes
 /// `ẋᵢ = −xᵢ / τᵢ + wᵢ`, parametrised by the correlation time `τᵢ > 0` (seconds)
@@ -16,7 +16,7 @@ use kestrel_core::{LinearizedProcess, ProcessModel, Real};
 /// ```
 /// use kestrel_models::GaussMarkov;
 /// use kestrel_core::{LinearizedProcess, ProcessModel, nalgebra::Vector1};
-/// let gm = GaussMarkov::new(Vector1::new(2.0), Vector1::new(3.0));
+/// let gm = GaussMarkov::new(Vector1::new(2.0), Vector1::new(3.0)).unwrap();
 /// let x = Vector1::new(1.0);
 /// let e = (-0.5_f64).exp(); // dt / τ = 1 / 2
 /// assert!((gm.propagate(&x, 1.0)[0] - e).abs() < 1e-15);
@@ -34,15 +34,32 @@ pub struct GaussMarkov<T: Real, const N: usize> {
 impl<T: Real, const N: usize> GaussMarkov<T, N> {
     /// Processes with correlation times `tau` and steady-state standard
     /// deviations `sigma`.
-    pub fn new(tau: SVector<T, N>, sigma: SVector<T, N>) -> Self {
-        Self {
+    ///
+    /// # Errors
+    /// [`FilterError::InvalidParameter`] `"tau"` unless every `τᵢ` is
+    /// positive (`+∞` allowed), `"sigma"` unless every `σᵢ` is finite and `≥ 0`.
+    pub fn new(tau: SVector<T, N>, sigma: SVector<T, N>) -> Result<Self, FilterError> {
+        // NaN fails `> 0`; τ = +∞ is a random constant.
+        if !tau.iter().all(|t| *t > T::zero()) {
+            return Err(FilterError::InvalidParameter {
+                name: "tau",
+                valid: "greater than 0 for every state (+∞ for a random constant)",
+            });
+        }
+        if !sigma.iter().all(|s| s.is_finite() && *s >= T::zero()) {
+            return Err(FilterError::InvalidParameter {
+                name: "sigma",
+                valid: "finite and at least 0 for every state",
+            });
+        }
+        Ok(Self {
             correlation_times: tau,
             std_devs: sigma,
-        }
+        })
     }
 
-    /// `N` identical processes.
-    pub fn uniform(tau: T, sigma: T) -> Self {
+    /// `N` identical processes (the same errors as [`new`](Self::new)).
+    pub fn uniform(tau: T, sigma: T) -> Result<Self, FilterError> {
         Self::new(SVector::repeat(tau), SVector::repeat(sigma))
     }
 
@@ -85,7 +102,8 @@ mod tests {
         let gm = GaussMarkov::new(
             Vector2::new(1.0 / ln2, f64::INFINITY),
             Vector2::new(2.0, 5.0),
-        );
+        )
+        .unwrap();
         let x = Vector2::new(8.0, 3.0);
         let got = gm.propagate(&x, 1.0);
         assert!((got - Vector2::new(4.0, 3.0)).norm() < 1e-14, "{got}");
@@ -97,7 +115,7 @@ mod tests {
     /// A short step keeps relative accuracy: Q ≈ 2σ² dt / τ.
     #[test]
     fn short_step() {
-        let gm = GaussMarkov::<f64, 1>::uniform(100.0, 1.0);
+        let gm = GaussMarkov::<f64, 1>::uniform(100.0, 1.0).unwrap();
         let q = gm.noise(&Vector1::zeros(), 1e-9)[0];
         assert!((q / (2.0 * 1e-11) - 1.0).abs() < 1e-10, "{q}");
     }
@@ -105,7 +123,7 @@ mod tests {
     #[test]
     fn matches_van_loan() {
         let (tau, sigma, dt) = (3.0, 0.2, 1.3);
-        let gm = GaussMarkov::<f64, 1>::uniform(tau, sigma);
+        let gm = GaussMarkov::<f64, 1>::uniform(tau, sigma).unwrap();
         let (phi, q) = crate::van_loan(
             &Matrix1::new(-1.0 / tau),
             &Matrix1::new(1.0),

@@ -15,7 +15,7 @@
 //! use kestrel_core::{Ekf, nalgebra::{Matrix2, Vector2, Vector4, SMatrix}};
 //! use kestrel_models::{ConstantVelocity2d, Selection};
 //!
-//! let cv = ConstantVelocity2d::new(0.01);
+//! let cv = ConstantVelocity2d::new(0.01).unwrap();
 //! let gps = Selection::<f64, 4, 2>::new([0, 2], Matrix2::identity()).unwrap();
 //! let mut ekf = Ekf::new(Vector4::zeros(), SMatrix::<f64, 4, 4>::identity() * 100.0).unwrap();
 //! for k in 1..=30 {
@@ -41,6 +41,7 @@ mod pade;
 mod random_walk;
 mod range_bearing;
 mod selection;
+mod sizes;
 mod stack;
 mod van_loan;
 
@@ -58,5 +59,6 @@ pub use lti::Lti;
 pub use random_walk::RandomWalk;
 pub use range_bearing::RangeBearing;
 pub use selection::Selection;
+pub use sizes::{AccelerationAxes, Size, SumOf, VelocityAxes};
 pub use stack::Stack;
 pub use van_loan::van_loan;

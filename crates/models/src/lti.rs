@@ -89,7 +89,7 @@ mod tests {
             Vector2::new(0.0, 1.0),
             Matrix1::new(0.8),
         );
-        let cv = ConstantVelocity1d::new(0.8);
+        let cv = ConstantVelocity1d::new(0.8).unwrap();
         let x = Vector2::new(2.0, -3.0);
         for dt in [0.01, 1.0, 6.0] {
             assert!((lti.propagate(&x, dt) - cv.propagate(&x, dt)).norm() < 1e-13);

@@ -1,7 +1,7 @@
 //! Range and bearing to a planar position.
 
 use kestrel_core::nalgebra::{Matrix2, SMatrix, SVector, Vector2};
-use kestrel_core::{LinearizedMeasurement, MeasurementModel, Real};
+use kestrel_core::{FilterError, LinearizedMeasurement, MeasurementModel, Real};
 
 use crate::wrap_angle;
 
@@ -38,8 +38,8 @@ use crate::wrap_angle;
 /// let nu = rb.residual(&Vector2::new(1.0, PI - 0.1), &Vector2::new(1.0, -PI + 0.1));
 /// assert!((nu[1] + 0.2).abs() < 1e-15);
 /// // Invalid indices are refused.
-/// assert!(RangeBearing::<f64, 4>::new(0, 4, Matrix2::identity()).is_none());
-/// assert!(RangeBearing::<f64, 4>::new(1, 1, Matrix2::identity()).is_none());
+/// assert!(RangeBearing::<f64, 4>::new(0, 4, Matrix2::identity()).is_err());
+/// assert!(RangeBearing::<f64, 4>::new(1, 1, Matrix2::identity()).is_err());
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RangeBearing<T: Real, const N: usize> {
@@ -53,9 +53,25 @@ pub struct RangeBearing<T: Real, const N: usize> {
 
 impl<T: Real, const N: usize> RangeBearing<T, N> {
     /// Range and bearing to `(x[x_index], x[y_index])` from the origin with
-    /// noise `r`; `None` unless both indices are below `N` and distinct.
-    pub fn new(x_index: usize, y_index: usize, r: Matrix2<T>) -> Option<Self> {
-        (x_index < N && y_index < N && x_index != y_index).then_some(Self {
+    /// noise `r` (checked by the filter's input contract at each update).
+    ///
+    /// # Errors
+    /// [`FilterError::InvalidParameter`] `"x_index"` / `"y_index"` unless
+    /// both are below `N` and distinct.
+    pub fn new(x_index: usize, y_index: usize, r: Matrix2<T>) -> Result<Self, FilterError> {
+        if x_index >= N {
+            return Err(FilterError::InvalidParameter {
+                name: "x_index",
+                valid: "below the state size N",
+            });
+        }
+        if y_index >= N || y_index == x_index {
+            return Err(FilterError::InvalidParameter {
+                name: "y_index",
+                valid: "below the state size N and different from x_index",
+            });
+        }
+        Ok(Self {
             x_index,
             y_index,
             sensor: Vector2::zeros(),

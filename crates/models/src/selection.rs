@@ -1,7 +1,7 @@
 //! Direct observation of chosen state components.
 
 use kestrel_core::nalgebra::{SMatrix, SVector};
-use kestrel_core::{LinearizedMeasurement, MeasurementModel, Real};
+use kestrel_core::{FilterError, LinearizedMeasurement, MeasurementModel, Real};
 
 /// Measures `M` components of an `N`-state directly: `zᵢ = x[indices[i]] + vᵢ`,
 /// `v ~ N(0, R)`. `H` is the selection matrix with a single 1 per row.
@@ -16,7 +16,7 @@ use kestrel_core::{LinearizedMeasurement, MeasurementModel, Real};
 /// assert_eq!(pos.predict(&x), Vector2::new(1.0, 3.0));
 /// assert_eq!(pos.jacobian(&x) * x, pos.predict(&x));
 /// assert_eq!(pos.indices(), &[0, 2]);
-/// assert!(Selection::<f64, 4, 1>::new([4], Default::default()).is_none());
+/// assert!(Selection::<f64, 4, 1>::new([4], Default::default()).is_err());
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Selection<T: Real, const N: usize, const M: usize> {
@@ -26,13 +26,21 @@ pub struct Selection<T: Real, const N: usize, const M: usize> {
 }
 
 impl<T: Real, const N: usize, const M: usize> Selection<T, N, M> {
-    /// Observes `x[indices[i]]` with noise `r`; `None` if an index is not
-    /// below `N`. Repeated indices are allowed (two sensors of one state).
-    pub fn new(indices: [usize; M], r: SMatrix<T, M, M>) -> Option<Self> {
-        indices
-            .iter()
-            .all(|&i| i < N)
-            .then_some(Self { indices, noise: r })
+    /// Observes `x[indices[i]]` with noise `r` (checked by the filter's
+    /// input contract at each update). Repeated indices are allowed (two
+    /// sensors of one state).
+    ///
+    /// # Errors
+    /// [`FilterError::InvalidParameter`] `"indices"` unless every index is
+    /// below `N`.
+    pub fn new(indices: [usize; M], r: SMatrix<T, M, M>) -> Result<Self, FilterError> {
+        if !indices.iter().all(|&i| i < N) {
+            return Err(FilterError::InvalidParameter {
+                name: "indices",
+                valid: "each below the state size N",
+            });
+        }
+        Ok(Self { indices, noise: r })
     }
 
     /// The observed state indices.
@@ -85,8 +93,8 @@ mod tests {
 
     #[test]
     fn indices_validated() {
-        assert!(Selection::<f32, 3, 1>::new([2], Matrix1::new(1.0)).is_some());
-        assert!(Selection::<f32, 3, 1>::new([3], Matrix1::new(1.0)).is_none());
-        assert!(Selection::<f32, 3, 2>::new([0, usize::MAX], Default::default()).is_none());
+        assert!(Selection::<f32, 3, 1>::new([2], Matrix1::new(1.0)).is_ok());
+        assert!(Selection::<f32, 3, 1>::new([3], Matrix1::new(1.0)).is_err());
+        assert!(Selection::<f32, 3, 2>::new([0, usize::MAX], Default::default()).is_err());
     }
 }

@@ -3,13 +3,15 @@
 use kestrel_core::nalgebra::{SMatrix, SVector};
 use kestrel_core::{LinearizedProcess, ProcessModel, Real};
 
+use crate::sizes::{Size, SumOf};
+
 /// Two independent process models side by side: the state is the
 /// concatenation `[x_A; x_B]` of an `NA`-state model `A` and an `NB`-state
 /// model `B`, and `Φ`, `Q` are block diagonal. `Stack` implements
 /// [`ProcessModel`]`<T, N>` (and [`LinearizedProcess`] when both parts do)
-/// for `N = NA + NB`; any other `N` is a compile error when the model is
-/// used (an inline `const` assertion, evaluated at monomorphisation: `cargo
-/// build` and `cargo test` report it, `cargo check` does not). Stacks nest:
+/// for `N = NA + NB` up to 48 states ([`SumOf`](crate::SumOf)); any other
+/// `N` is a type error that `cargo check` reports, naming both parts'
+/// sizes. Stacks nest:
 /// `Stack<Stack<A, B, 2, 2>, C, 4, 1>` is a 5-state model.
 ///
 /// ```
@@ -17,9 +19,9 @@ use kestrel_core::{LinearizedProcess, ProcessModel, Real};
 /// use kestrel_core::{LinearizedProcess, ProcessModel, nalgebra::{SVector, Vector1}};
 /// // Position/velocity, a random-walk clock bias and a Gauss-Markov drift
 /// // whose correlation time halves it every 0.5 s.
-/// let cv = ConstantVelocity1d::new(0.1);
-/// let bias = RandomWalk::new(Vector1::new(4.0));
-/// let drift = GaussMarkov::<f64, 1>::uniform(0.5 / core::f64::consts::LN_2, 1.0);
+/// let cv = ConstantVelocity1d::new(0.1).unwrap();
+/// let bias = RandomWalk::new(Vector1::new(4.0)).unwrap();
+/// let drift = GaussMarkov::<f64, 1>::uniform(0.5 / core::f64::consts::LN_2, 1.0).unwrap();
 /// let model = Stack::<_, _, 3, 1>::new(Stack::new(cv, bias), drift);
 /// let x = SVector::<f64, 4>::new(1.0, 2.0, 5.0, 8.0);
 /// let want = SVector::<f64, 4>::new(2.0, 2.0, 5.0, 4.0);
@@ -32,10 +34,10 @@ use kestrel_core::{LinearizedProcess, ProcessModel, Real};
 ///
 /// A size that is not `NA + NB` does not build:
 ///
-/// ```compile_fail,E0080
+/// ```compile_fail,E0277
 /// use kestrel_models::{RandomWalk, Stack};
 /// use kestrel_core::{ProcessModel, nalgebra::SVector};
-/// let s = Stack::<_, _, 2, 1>::new(RandomWalk::<f64, 2>::uniform(1.0), RandomWalk::<f64, 1>::uniform(1.0));
+/// let s = Stack::<_, _, 2, 1>::new(RandomWalk::<f64, 2>::uniform(1.0).unwrap(), RandomWalk::<f64, 1>::uniform(1.0).unwrap());
 /// let x = SVector::<f64, 4>::zeros(); // 2 + 1 ≠ 4
 /// let _ = s.propagate(&x, 1.0);
 /// ```
@@ -58,16 +60,6 @@ impl<A, B, const NA: usize, const NB: usize> Stack<A, B, NA, NB> {
         B: ProcessModel<T, NB>,
     {
         Self { first, second }
-    }
-}
-
-/// Rejects `N ≠ NA + NB` when a `Stack` method is instantiated.
-const fn check<const NA: usize, const NB: usize, const N: usize>() {
-    const {
-        assert!(
-            NA + NB == N,
-            "Stack<A, B, NA, NB> has NA + NB states, not N"
-        );
     }
 }
 
@@ -96,7 +88,6 @@ fn block_diag<T: Real, const NA: usize, const NB: usize, const N: usize>(
 impl<A, B, const NA: usize, const NB: usize> Stack<A, B, NA, NB> {
     /// The parts of `x`: `(x[..NA], x[NA..])`.
     fn split<T: Real, const N: usize>(x: &SVector<T, N>) -> (SVector<T, NA>, SVector<T, NB>) {
-        check::<NA, NB, N>();
         (
             x.fixed_rows::<NA>(0).into_owned(),
             x.fixed_rows::<NB>(NA).into_owned(),
@@ -110,6 +101,7 @@ where
     T: Real,
     A: ProcessModel<T, NA>,
     B: ProcessModel<T, NB>,
+    Size<N>: SumOf<NA, NB>,
 {
     fn propagate(&self, x: &SVector<T, N>, dt: T) -> SVector<T, N> {
         let (xa, xb) = Self::split(x);
@@ -131,6 +123,7 @@ where
     T: Real,
     A: LinearizedProcess<T, NA>,
     B: LinearizedProcess<T, NB>,
+    Size<N>: SumOf<NA, NB>,
 {
     fn transition(&self, x: &SVector<T, N>, dt: T) -> SMatrix<T, N, N> {
         let (xa, xb) = Self::split(x);
@@ -150,9 +143,9 @@ mod tests {
     /// CV (2 axes) + GM (2 states) + RW (1): a 7-state nested stack.
     #[test]
     fn nested_blocks() {
-        let cv = ConstantVelocity2d::new(2.0);
-        let gm = GaussMarkov::new(Vector2::new(1.0, 2.0), Vector2::new(0.5, 1.5));
-        let rw = RandomWalk::new(Vector1::new(3.0));
+        let cv = ConstantVelocity2d::new(2.0).unwrap();
+        let gm = GaussMarkov::new(Vector2::new(1.0, 2.0), Vector2::new(0.5, 1.5)).unwrap();
+        let rw = RandomWalk::new(Vector1::new(3.0)).unwrap();
         let m = Stack::<_, _, 6, 1>::new(Stack::new(cv, gm), rw);
         let x = SVector::<f64, 7>::from_fn(|i, _| i as f64 + 1.0);
         let dt = 0.4;
@@ -183,8 +176,8 @@ mod tests {
     #[test]
     fn inferred_sizes_and_f32() {
         let m = Stack::new(
-            ConstantAcceleration1d::new(1.0_f32),
-            RandomWalk::<f32, 1>::uniform(2.0),
+            ConstantAcceleration1d::new(1.0_f32).unwrap(),
+            RandomWalk::<f32, 1>::uniform(2.0).unwrap(),
         );
         let x = SVector::<f32, 4>::new(0.0, 1.0, 2.0, 3.0);
         assert_eq!(
@@ -194,7 +187,9 @@ mod tests {
         let q = m.noise(&x, 1.0);
         assert_eq!(
             q.fixed_view::<3, 3>(0, 0),
-            ConstantAcceleration1d::new(1.0_f32).noise(&x.fixed_rows::<3>(0).into_owned(), 1.0)
+            ConstantAcceleration1d::new(1.0_f32)
+                .unwrap()
+                .noise(&x.fixed_rows::<3>(0).into_owned(), 1.0)
         );
         assert_eq!(q[(3, 3)], 2.0);
         assert_eq!(

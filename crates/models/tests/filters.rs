@@ -87,8 +87,11 @@ fn scenarios<T: Real>() -> Vec<Outcome> {
     .unwrap()
     .with_sensor(Vector2::new(lit(-2.0), lit(1.0)));
     let stack = Stack::<_, _, 3, 1>::new(
-        Stack::new(ConstantVelocity1d::new(q), RandomWalk::<T, 1>::uniform(q)),
-        GaussMarkov::<T, 1>::uniform(lit(5.0), lit(1.0)),
+        Stack::new(
+            ConstantVelocity1d::new(q).unwrap(),
+            RandomWalk::<T, 1>::uniform(q).unwrap(),
+        ),
+        GaussMarkov::<T, 1>::uniform(lit(5.0), lit(1.0)).unwrap(),
     );
     let linear_sensor = LinearMeasurement::new(
         SMatrix::<T, 1, 2>::new(T::one(), lit(0.5)),
@@ -97,7 +100,7 @@ fn scenarios<T: Real>() -> Vec<Outcome> {
     vec![
         track(
             "cv1",
-            &ConstantVelocity1d::new(q),
+            &ConstantVelocity1d::new(q).unwrap(),
             &positions::<T, 2, 1>([0]),
             [0.0, 1.0],
             [0.0; 2],
@@ -115,7 +118,7 @@ fn scenarios<T: Real>() -> Vec<Outcome> {
         ),
         track(
             "cv3",
-            &ConstantVelocity3d::new(q),
+            &ConstantVelocity3d::new(q).unwrap(),
             &positions::<T, 6, 3>([0, 2, 4]),
             [0.0, 1.0, 5.0, -2.0, 1.0, 0.5],
             [0.0; 6],
@@ -124,7 +127,7 @@ fn scenarios<T: Real>() -> Vec<Outcome> {
         ),
         track(
             "ca1",
-            &ConstantAcceleration1d::new(q),
+            &ConstantAcceleration1d::new(q).unwrap(),
             &positions::<T, 3, 1>([0]),
             [0.0, 1.0, 0.2],
             [0.0; 3],
@@ -133,7 +136,7 @@ fn scenarios<T: Real>() -> Vec<Outcome> {
         ),
         track(
             "ca2",
-            &ConstantAcceleration2d::new(q),
+            &ConstantAcceleration2d::new(q).unwrap(),
             &positions::<T, 6, 2>([0, 3]),
             [0.0, 1.0, 0.2, 3.0, -1.0, 0.1],
             [0.0; 6],
@@ -151,7 +154,7 @@ fn scenarios<T: Real>() -> Vec<Outcome> {
         ),
         track(
             "random walk",
-            &RandomWalk::new(Vector2::new(q, q)),
+            &RandomWalk::new(Vector2::new(q, q)).unwrap(),
             &positions::<T, 2, 2>([0, 1]),
             [3.0, -4.0],
             [0.0; 2],
@@ -163,7 +166,8 @@ fn scenarios<T: Real>() -> Vec<Outcome> {
             &GaussMarkov::new(
                 Vector2::new(lit(2.0), lit(50.0)),
                 Vector2::new(T::one(), lit(3.0)),
-            ),
+            )
+            .unwrap(),
             &positions::<T, 2, 2>([0, 1]),
             [3.0, -4.0],
             [0.0; 2],
@@ -199,7 +203,7 @@ fn scenarios<T: Real>() -> Vec<Outcome> {
         ),
         track(
             "range-bearing",
-            &ConstantVelocity2d::new(lit::<T>(1e-4)),
+            &ConstantVelocity2d::new(lit::<T>(1e-4)).unwrap(),
             &rb,
             [10.0, 1.0, 5.0, -0.5],
             [11.0, 0.5, 4.0, 0.0],
@@ -271,7 +275,7 @@ fn range_bearing_at_the_sensor_is_refused() {
 /// K = ½.
 #[test]
 fn gauss_markov_hand_computed_step() {
-    let gm = GaussMarkov::<f64, 1>::uniform(1.0 / core::f64::consts::LN_2, 2.0);
+    let gm = GaussMarkov::<f64, 1>::uniform(1.0 / core::f64::consts::LN_2, 2.0).unwrap();
     let sensor = Selection::<f64, 1, 1>::new([0], Matrix1::new(4.0)).unwrap();
     let mut ekf = Ekf::new(Vector1::new(8.0), Matrix1::new(4.0)).unwrap();
     ekf.predict(&gm, 1.0).unwrap();

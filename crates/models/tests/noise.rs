@@ -39,10 +39,10 @@ fn noise<T: Real, P: ProcessModel<T, N>, const N: usize>(p: &P, dt: T) -> SMatri
 proptest! {
     #[test]
     fn kinematic(dt in 0.0..10.0, q in prop::array::uniform3(0.0..100.0)) {
-        assert_psd(&noise(&ConstantVelocity1d::new(q[0]), dt), 1e-12)?;
+        assert_psd(&noise(&ConstantVelocity1d::new(q[0]).unwrap(), dt), 1e-12)?;
         assert_psd(&noise(&ConstantVelocity2d::per_axis(&q[..2]).unwrap(), dt), 1e-12)?;
         assert_psd(&noise(&ConstantVelocity3d::per_axis(&q).unwrap(), dt), 1e-12)?;
-        assert_psd(&noise(&ConstantAcceleration1d::new(q[0]), dt), 1e-12)?;
+        assert_psd(&noise(&ConstantAcceleration1d::new(q[0]).unwrap(), dt), 1e-12)?;
         assert_psd(&noise(&ConstantAcceleration2d::per_axis(&q[..2]).unwrap(), dt), 1e-12)?;
         assert_psd(&noise(&ConstantAcceleration3d::per_axis(&q).unwrap(), dt), 1e-12)?;
         let (dt32, q32) = (dt as f32, q.map(|v| v as f32));
@@ -57,12 +57,12 @@ proptest! {
         tau in prop::array::uniform3(1e-3..1e4),
         sigma in prop::array::uniform3(0.0..10.0),
     ) {
-        let rw = RandomWalk::new(SVector::from(q));
-        let gm = GaussMarkov::new(SVector::from(tau), SVector::from(sigma));
+        let rw = RandomWalk::new(SVector::from(q)).unwrap();
+        let gm = GaussMarkov::new(SVector::from(tau), SVector::from(sigma)).unwrap();
         assert_psd(&noise(&rw, dt), 1e-12)?;
         assert_psd(&noise(&gm, dt), 1e-12)?;
         assert_psd(&noise::<_, _, 6>(&Stack::new(rw, gm), dt), 1e-12)?;
-        let gm32 = GaussMarkov::new(SVector::from(tau.map(|v| v as f32)), SVector::from(sigma.map(|v| v as f32)));
+        let gm32 = GaussMarkov::new(SVector::from(tau.map(|v| v as f32)), SVector::from(sigma.map(|v| v as f32))).unwrap();
         assert_psd(&noise(&gm32, dt as f32), 1e-5)?;
     }
 
@@ -79,7 +79,7 @@ proptest! {
         let l = SMatrix::<f64, 2, 2>::from_row_slice(&l);
         let lti = Lti::new(f, g, l * l.transpose());
         assert_psd(&noise(&lti, dt), 1e-12)?;
-        let stacked = Stack::<_, _, 4, 2>::new(lti, ConstantVelocity1d::new(1.0));
+        let stacked = Stack::<_, _, 4, 2>::new(lti, ConstantVelocity1d::new(1.0).unwrap());
         assert_psd(&noise::<_, _, 6>(&stacked, dt), 1e-12)?;
         let lti32 = Lti::new(f.cast::<f32>(), g.cast::<f32>(), (l * l.transpose()).cast::<f32>());
         assert_psd(&noise(&lti32, dt as f32), 1e-5)?;

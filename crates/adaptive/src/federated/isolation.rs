@@ -1,7 +1,7 @@
 //! Fault isolation: consecutive failed innovation tests isolate a local,
 //! consecutive passes re-admit it.
 
-use kestrel_core::real::lit;
+use kestrel_core::real::{lit, to_f64};
 use kestrel_core::{FilterError, Real};
 
 use crate::chi_square_quantile;
@@ -100,7 +100,8 @@ impl<T: Real> Isolation<T> {
     /// # Errors
     /// [`FilterError::InvalidParameter`]: `"alpha"` unless `0 < α < 1`,
     /// `"fail_after"` / `"readmit_after"` if zero.
-    pub fn new(alpha: f64, fail_after: u32, readmit_after: u32) -> Result<Self, FilterError> {
+    pub fn new(alpha: T, fail_after: u32, readmit_after: u32) -> Result<Self, FilterError> {
+        let alpha = to_f64(alpha);
         if !(alpha > 0.0 && alpha < 1.0) {
             return Err(FilterError::InvalidParameter {
                 name: "alpha",

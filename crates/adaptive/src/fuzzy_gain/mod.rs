@@ -137,7 +137,7 @@ impl<T: Real, const M: usize> FuzzyGain<T, M> {
         Self::new(
             odometer_engine()?,
             ODOMETER_UNUSABLE,
-            Self::DEFAULT_SMOOTHING,
+            lit(Self::DEFAULT_SMOOTHING),
         )
     }
 }
@@ -154,9 +154,9 @@ impl<T: Real, const M: usize, const S: usize, const O: usize, const R: usize>
     pub fn new(
         engine: Engine<T, 3, S, O, R>,
         unusable: [bool; O],
-        smoothing: f64,
+        smoothing: T,
     ) -> Result<Self, FilterError> {
-        if !(smoothing > 0.0 && smoothing <= 1.0) {
+        if !(smoothing > T::zero() && smoothing <= T::one()) {
             return Err(FilterError::InvalidParameter {
                 name: "smoothing",
                 valid: "0 < smoothing ≤ 1",
@@ -165,7 +165,7 @@ impl<T: Real, const M: usize, const S: usize, const O: usize, const R: usize>
         Ok(Self {
             engine,
             unusable,
-            smoothing: lit(smoothing),
+            smoothing,
             innovation_mean: None,
             inputs: None,
         })

@@ -77,7 +77,7 @@ impl<T: Real, const W: usize> FuzzyOdometer<T, W> {
                 FuzzyGain::new(
                     odometer_engine()?,
                     ODOMETER_UNUSABLE,
-                    FuzzyGain::<T, 3>::DEFAULT_SMOOTHING,
+                    lit(FuzzyGain::<T, 3>::DEFAULT_SMOOTHING),
                 )?,
                 WindowedNoise::new(lit(1e-4))?,
             ),
