@@ -626,12 +626,12 @@ fn asymmetric_noise_and_bad_time_steps_are_refused_by_every_form() {
 /// is called.
 #[test]
 fn a_nan_time_step_is_named_as_such() {
-    let want = Some(non_finite(Quantity::TimeStep, 0));
+    let want = non_finite(Quantity::TimeStep, 0);
     let mut f = Ekf::new(SVector::<f64, 6>::zeros(), SMatrix::identity()).unwrap();
     let process = LinearProcess::new(SMatrix::identity(), SMatrix::identity());
-    assert_eq!(f.predict(&process, f64::NAN).err(), want);
+    assert_eq!(f.predict(&process, f64::NAN).err(), Some(want));
     assert_eq!(
-        want.unwrap().to_string(),
+        want.to_string(),
         "time step dt has a non-finite value at index 0"
     );
 }
