@@ -67,6 +67,11 @@ pub trait PriorAdapter<T: Real> {
 /// measurement; the form recomputes what changed, applies the gain, and
 /// [`after_update`](Self::after_update) may learn from the result (for example
 /// estimate `R` from the post-fit residual).
+#[diagnostic::on_unimplemented(
+    message = "the noise adapter `{Self}` does not work on {M}-dimensional measurements",
+    label = "the filter's adapter fixes the measurement size of `update`",
+    note = "for a sensor whose size differs from the adapter's, call `update_with(&model, &z, &mut adapter)` with an adapter of that size, or `&mut ()` for none"
+)]
 pub trait NoiseAdapter<T: Real, const M: usize>: PriorAdapter<T> {
     /// What the adapter reports of each update (λ, inflation factors, …); it
     /// is returned in [`UpdateReport::adapters`](crate::UpdateReport::adapters).

@@ -17,6 +17,12 @@ use crate::Real;
 /// let z = First { r: 1.0 }.predict(&Vector2::new(3.0, 4.0));
 /// assert_eq!(z[0], 3.0);
 /// ```
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not a model of {M}-dimensional measurements of a {N}-state filter",
+    label = "not a MeasurementModel<{T}, {N}, {M}>",
+    note = "the measurement size M of `update` must agree between `z`, the model and the filter's noise adapter, which may fix it",
+    note = "to update with a sensor whose size differs from the adapter's, call `update_with(&model, &z, &mut adapter)` (`&mut ()` for no adapter)"
+)]
 pub trait MeasurementModel<T: Real, const N: usize, const M: usize> {
     /// The predicted measurement `ẑ = h(x)`.
     fn predict(&self, x: &SVector<T, N>) -> SVector<T, M>;
@@ -50,6 +56,12 @@ pub trait MeasurementModel<T: Real, const N: usize, const M: usize> {
 /// }
 /// assert_eq!(Sum.jacobian(&Vector2::zeros()).sum(), 2.0);
 /// ```
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not a linearised model of {M}-dimensional measurements of a {N}-state filter",
+    label = "not a LinearizedMeasurement<{T}, {N}, {M}>",
+    note = "the measurement size M of `update` must agree between `z`, the model and the filter's noise adapter, which may fix it; for a sensor of another size than the adapter's, call `update_with(&model, &z, &mut adapter)` (`&mut ()` for no adapter)",
+    note = "the covariance form (`Ekf`) needs `H = ∂h/∂x`: implement `LinearizedMeasurement`, derive it with `kestrel::models::AutoJacobian`, or use `Ukf` / `SrUkf`"
+)]
 pub trait LinearizedMeasurement<T: Real, const N: usize, const M: usize>:
     MeasurementModel<T, N, M>
 {

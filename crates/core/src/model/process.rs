@@ -22,6 +22,11 @@ use crate::Real;
 /// }
 /// assert_eq!(Drift { q: 2.0 }.noise(&SVector::zeros(), 0.5)[0], 1.0);
 /// ```
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not a process model of a {N}-state filter over `{T}`",
+    label = "not a ProcessModel<{T}, {N}>",
+    note = "the model's state size and scalar must be the filter's"
+)]
 pub trait ProcessModel<T: Real, const N: usize> {
     /// Propagates the state over `dt` seconds: `x⁻ = f(x, dt)`.
     fn propagate(&self, x: &SVector<T, N>, dt: T) -> SVector<T, N>;
@@ -51,6 +56,11 @@ pub trait ProcessModel<T: Real, const N: usize> {
 /// }
 /// assert!((Decay.transition(&SVector::zeros(), 1.0)[0] - 0.367879).abs() < 1e-6);
 /// ```
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` has no transition matrix for a {N}-state filter over `{T}`",
+    label = "not a LinearizedProcess<{T}, {N}>",
+    note = "the covariance form (`Ekf`) needs `Φ = ∂f/∂x`: implement `LinearizedProcess`, derive it with `kestrel::models::AutoJacobian`, or use `Ukf` / `SrUkf`"
+)]
 pub trait LinearizedProcess<T: Real, const N: usize>: ProcessModel<T, N> {
     /// The state-transition matrix `Φ = ∂f/∂x` evaluated at `x` (the state
     /// before propagation) over `dt` seconds.

@@ -1,0 +1,11 @@
+//! The compile errors of common mistakes, pinned: each names the cause in
+//! the user's terms (the adapter's measurement size and `update_with`, the
+//! valid state sizes of a model, the missing Jacobian and its remedies).
+//! The expected messages are in `tests/compile_fail/*.stderr`; regenerate
+//! them with `TRYBUILD=overwrite cargo test --test compile_messages` after a
+//! deliberate change, and read the diff.
+
+#[test]
+fn mistakes_give_messages_that_name_the_cause() {
+    trybuild::TestCases::new().compile_fail("tests/compile_fail/*.rs");
+}
