@@ -49,6 +49,8 @@ pub enum Quantity {
     UpdatedState,
     /// The updated covariance.
     UpdatedCovariance,
+    /// A covariance given to a utility (e.g. a Gaussian to sample from).
+    Covariance,
 }
 
 impl Quantity {
@@ -90,6 +92,7 @@ impl fmt::Display for Quantity {
             Quantity::InnovationCovariance => "innovation covariance",
             Quantity::UpdatedState => "updated state",
             Quantity::UpdatedCovariance => "updated covariance",
+            Quantity::Covariance => "covariance",
         })
     }
 }

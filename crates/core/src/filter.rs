@@ -4,6 +4,7 @@ use nalgebra::{SMatrix, SVector};
 
 use crate::adapter::{NoiseAdapter, PriorAdapter};
 use crate::form::{CovarianceForm, Form, PredictForm, SquareRootForm, UnscentedForm, UpdateForm};
+use crate::sigma::MerweParams;
 use crate::{Euclidean, FilterError, Real, StateSpace, UpdateReport};
 
 /// A recursive estimator of an `N`-dimensional state: an update form `F`
@@ -83,6 +84,50 @@ impl<T: Real, const N: usize> Filter<T, N, SquareRootForm<T, N>> {
         Self::with_form(x0, SquareRootForm::new(&p0)?)
     }
 }
+
+macro_rules! sigma_params {
+    ($form:ident) => {
+        impl<T: Real, const N: usize, A, S: StateSpace<T, N>> Filter<T, N, $form<T, N>, A, S> {
+            /// The same filter with sigma-point parameters `params`.
+            ///
+            /// ```
+            /// use kestrel_core::{SrUkf, Ukf, sigma::MerweParams, nalgebra::{Matrix2, Vector2}};
+            /// let params = MerweParams::new(0.5, 2.0, 1.0);
+            /// let ukf = Ukf::new(Vector2::zeros(), Matrix2::identity())?.with_sigma_params(params)?;
+            /// let sr = SrUkf::new(Vector2::zeros(), Matrix2::identity())?.with_sigma_params(params)?;
+            /// assert_eq!(ukf.sigma_params(), &params);
+            /// assert_eq!(sr.sigma_params(), &params);
+            /// # Ok::<(), kestrel_core::FilterError>(())
+            /// ```
+            ///
+            /// # Errors
+            /// [`MerweParams::INVALID`](crate::sigma::MerweParams::INVALID)
+            /// for parameters without valid weights at this `N`.
+            pub fn with_sigma_params(
+                mut self,
+                params: MerweParams<T>,
+            ) -> Result<Self, FilterError> {
+                self.set_sigma_params(params)?;
+                Ok(self)
+            }
+
+            /// Replaces the sigma-point parameters (the filter is unchanged
+            /// on error).
+            pub fn set_sigma_params(&mut self, params: MerweParams<T>) -> Result<(), FilterError> {
+                self.form = self.form.clone().with_params(params)?;
+                Ok(())
+            }
+
+            /// The sigma-point parameters.
+            pub fn sigma_params(&self) -> &MerweParams<T> {
+                self.form.params()
+            }
+        }
+    };
+}
+
+sigma_params!(UnscentedForm);
+sigma_params!(SquareRootForm);
 
 impl<T: Real, const N: usize, F: Form<T, N>> Filter<T, N, F> {
     /// A filter from an initial state and a configured form, without adapter.

@@ -50,6 +50,7 @@
 pub mod adapter;
 pub mod contract;
 mod error;
+mod estimator;
 mod filter;
 pub mod form;
 pub mod linalg;
@@ -60,6 +61,7 @@ pub mod sigma;
 mod state_space;
 
 pub use error::{FilterError, Quantity};
+pub use estimator::Estimator;
 pub use filter::{Ekf, Filter, SrUkf, Ukf};
 pub use model::{LinearizedMeasurement, LinearizedProcess, MeasurementModel, ProcessModel};
 pub use nalgebra;
