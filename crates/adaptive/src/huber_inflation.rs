@@ -94,6 +94,14 @@ impl<T: Real, const M: usize> Default for HuberReport<T, M> {
 /// `α` is the significance level, in `[0.01, 0.15]` (the paper uses 0.05).
 /// The factors are floored at the machine epsilon of `T`, so an extreme
 /// outlier inflates `R` by at most `1/ε` instead of producing infinity.
+///
+/// **Gross errors.** Because of that floor, a residual beyond about
+/// `√(χ²/ε)` standard deviations (≈ 10⁸ σ in `f64`, 6·10³ σ in `f32`) is
+/// no longer down-weighted any further, and the correction grows with it: a
+/// 10³⁰ m range moves a state by about 10¹⁴ m. Huber inflation alone is for
+/// moderate outliers (multipath); for data that can hold gross errors, use
+/// it behind a χ² gate, [`GatedHuber`](crate::GatedHuber) /
+/// [`gated_huber`](crate::gated_huber).
 /// The test uses the innovation and covariance left by any adapter before
 /// this one in a tuple.
 ///

@@ -79,6 +79,7 @@ pub use federated::FederatedFilter;
 mod chi_square_gate;
 pub mod fuzzy;
 mod fuzzy_gain;
+mod gated_huber;
 mod huber_inflation;
 mod spd;
 mod windowed_noise;
@@ -87,6 +88,7 @@ pub use fuzzy_gain::{
     match_factor, odometer_engine, FuzzyGain, FuzzyGainReport, GainDecision, OdometerEngine,
     OdometerInputs, ODOMETER_RULES, ODOMETER_UNUSABLE,
 };
+pub use gated_huber::{gated_huber, GatedHuber};
 pub use huber_inflation::{HuberInflation, HuberReport, InflationShape};
 pub use spd::{project_spd, symmetric_eigen, SpdProjection};
 pub use windowed_noise::{WindowedNoise, WindowedNoiseReport};
