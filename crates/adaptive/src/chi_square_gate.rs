@@ -49,6 +49,8 @@ impl<T: Real> Default for GateReport<T> {
 /// assert!(!report.rejected && !step.is_rejected());
 /// assert!((report.statistic - 8.0).abs() < 1e-12);
 /// ```
+///
+/// Sources: see the [references](kestrel_core::references).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ChiSquareGate<T: Real, const M: usize> {
     threshold: T,

@@ -59,6 +59,8 @@ use crate::chi_square_quantile;
 /// assert_eq!(report.fade, 10.0);
 /// assert_eq!(step.innovation_covariance()[0], 36.0);
 /// ```
+///
+/// Sources: see the [references](kestrel_core::references).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DivergenceFading<T> {
     reserve: T,

@@ -123,6 +123,8 @@ impl<T: Real, const M: usize> Default for HuberReport<T, M> {
 /// assert_eq!(report.factors[1], 1.0);
 /// assert!((step.noise()[(0, 0)] - 50.0 / t1).abs() < 1e-12);
 /// ```
+///
+/// Sources: see the [references](kestrel_core::references).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HuberInflation<T: Real, const M: usize> {
     global_threshold: T,

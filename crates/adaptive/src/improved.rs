@@ -45,6 +45,8 @@ use crate::{DivergenceFading, OutlierCompression, SageHusa, SageHusaReport};
 /// assert!(report.adapters.sage_husa.skipped_for_fade);
 /// assert_eq!(kf.adapter().sage_husa.estimate()[0], 1.0);
 /// ```
+///
+/// Sources: see the [references](kestrel_core::references).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SageHusaComposition<A, T: Real, const M: usize> {
     /// The adapters run between putting `R̂` in place and the gain.

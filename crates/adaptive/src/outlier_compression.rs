@@ -39,6 +39,8 @@ use crate::chi_square::significance_threshold;
 /// assert!((report.factor - (c / 25.0).sqrt()).abs() < 1e-15);
 /// assert!((step.mahalanobis().unwrap() - c).abs() < 1e-12);
 /// ```
+///
+/// Sources: see the [references](kestrel_core::references).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct OutlierCompression<T, const M: usize> {
     threshold: T,

@@ -65,6 +65,8 @@ use kestrel_core::{FilterError, Real};
 /// let r: f64 = kf.adapter().estimate()[0];
 /// assert!((r - ((1.0 - d) * 1.0 + d * 1.5)).abs() < 1e-12);
 /// ```
+///
+/// Sources: see the [references](kestrel_core::references).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SageHusa<T: Real, const M: usize> {
     forgetting: T,

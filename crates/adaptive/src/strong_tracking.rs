@@ -42,6 +42,8 @@ use kestrel_core::{FilterError, Real};
 /// st.before_gain(&mut step, &mut report);
 /// assert_eq!(report.fade, 6.5);
 /// ```
+///
+/// Sources: see the [references](kestrel_core::references).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StrongTracking<T> {
     rho: T,

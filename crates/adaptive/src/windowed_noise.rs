@@ -73,6 +73,8 @@ impl<T: Real> Default for WindowedNoiseReport<T> {
 /// }
 /// assert!(report.estimated);
 /// ```
+///
+/// Sources: see the [references](kestrel_core::references).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WindowedNoise<T: Real, const M: usize, const W: usize> {
     window: [SVector<T, M>; W],

@@ -68,3 +68,6 @@ pub use nalgebra;
 pub use real::Real;
 pub use report::UpdateReport;
 pub use state_space::{Euclidean, StateSpace};
+
+#[doc = include_str!("../REFERENCES.md")]
+pub mod references {}

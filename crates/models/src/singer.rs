@@ -47,7 +47,7 @@ impl<T: Real, const N: usize> Singer<T, N>
 where
     Size<N>: AccelerationAxes,
 {
-    /// The model with manoeuvre time constant `tau` [s] and acceleration
+    /// The model with manoeuvre time constant `tau` (s) and acceleration
     /// standard deviation `sigma` [unit/s²], the same on every axis.
     ///
     /// # Errors
@@ -69,7 +69,7 @@ where
         Ok(Self { tau, sigma })
     }
 
-    /// The manoeuvre time constant `τ` [s].
+    /// The manoeuvre time constant `τ` (s).
     pub fn tau(&self) -> T {
         self.tau
     }

@@ -60,6 +60,8 @@ use super::{
 /// assert!((fed.state() - central.state()).norm() < 1e-9);
 /// assert!((fed.covariance() - central.covariance()).norm() < 1e-9);
 /// ```
+///
+/// Sources: see the [references](kestrel_core::references).
 #[derive(Debug, Clone)]
 pub struct FederatedFilter<T: Real, const N: usize, const L: usize, Locals> {
     locals: Locals,

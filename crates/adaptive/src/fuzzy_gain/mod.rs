@@ -109,6 +109,8 @@ impl<T: Real, const O: usize, const R: usize> Default for FuzzyGainReport<T, O, 
 /// let corrected = -0.5 + (1.0 - report.alpha) * 11.0;
 /// assert!((step.innovation()[0] - corrected).abs() < 1e-12);
 /// ```
+///
+/// Sources: see the [references](kestrel_core::references).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FuzzyGain<
     T: Real,

@@ -28,6 +28,8 @@ use crate::{
 /// let form = CovarianceForm::new(&Matrix2::new(2.0, 0.5, 0.5, 1.0)).unwrap();
 /// assert_eq!(form.covariance()[(0, 1)], 0.5);
 /// ```
+///
+/// Sources: see the [references](crate::references).
 #[derive(Debug, Clone, PartialEq)]
 pub struct CovarianceForm<T: Real, const N: usize> {
     cov: PendingCovariance<T, N>,

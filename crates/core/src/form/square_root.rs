@@ -51,6 +51,8 @@ pub enum TimeUpdate {
 /// let form = SquareRootForm::new(&Matrix2::new(4.0, 2.0, 2.0, 5.0)).unwrap();
 /// assert_eq!(form.factor(), Matrix2::new(2.0, 0.0, 1.0, 2.0));
 /// ```
+///
+/// Sources: see the [references](crate::references).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SquareRootForm<T: Real, const N: usize> {
     /// Factor of the posterior, or of the propagated part while pending.

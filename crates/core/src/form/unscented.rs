@@ -30,6 +30,8 @@ use crate::{
 ///     .with_params(MerweParams::new(0.5, 2.0, 1.0)).unwrap();
 /// assert_eq!(form.params().alpha, 0.5);
 /// ```
+///
+/// Sources: see the [references](crate::references).
 #[derive(Debug, Clone, PartialEq)]
 pub struct UnscentedForm<T: Real, const N: usize> {
     cov: PendingCovariance<T, N>,
