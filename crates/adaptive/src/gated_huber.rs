@@ -40,7 +40,8 @@ pub fn gated_huber<T: Real, const M: usize>(
 ) -> Result<GatedHuber<T, M>, FilterError> {
     let huber = HuberInflation::new(huber_significance)?;
     let gate = ChiSquareGate::new(gate_significance)?;
-    if !(to_f64(gate_significance) < to_f64(huber_significance)) {
+    // Both are in (0, 1) here (the constructors above checked them).
+    if to_f64(gate_significance) >= to_f64(huber_significance) {
         return Err(FilterError::InvalidParameter {
             name: "gate_significance",
             valid: "below huber_significance",

@@ -87,7 +87,7 @@ fn compare<T: Real, const K: usize, const N: usize>(
             let (a, n) = (analytic[(r, c)], numeric[(r, c)]);
             let e = (a - n).abs() / n.abs().max(T::one());
             // NaN anywhere is the worst error.
-            if !(e <= worst.max_error) {
+            if !e.is_finite() || e > worst.max_error {
                 worst = JacobianCheck {
                     max_error: if e.is_finite() { e } else { lit(f64::INFINITY) },
                     row: r,
