@@ -151,5 +151,67 @@ pub(crate) fn check_noise_cached<T: Real, const N: usize>(
     if q.as_slice() == checked.as_slice() {
         return Ok(());
     }
-    check_covariance(q, what).map(|_| ())
+    ensure_finite(q, what)?;
+    check_symmetric(q, what)?;
+    // A symmetric matrix with a non-negative, dominant diagonal is positive
+    // semi-definite (Gershgorin), which settles diagonal and nearly diagonal
+    // noise in O(N²); only the others are factored.
+    if diagonally_dominant(q) {
+        return Ok(());
+    }
+    cholesky_semidefinite(q)
+        .map(|_| ())
+        .map_err(|e| FilterError::NotPositiveDefinite {
+            what,
+            index: e.index,
+        })
+}
+
+/// Whether every diagonal element is at least the sum of the magnitudes of
+/// the other elements in its column (and so `≥ 0`).
+fn diagonally_dominant<T: Real, const N: usize>(a: &SMatrix<T, N, N>) -> bool {
+    (0..N).all(|j| {
+        let column = a.column(j);
+        let off: T = column
+            .iter()
+            .enumerate()
+            .filter(|&(i, _)| i != j)
+            .fold(T::zero(), |acc, (_, v)| acc + v.abs());
+        a[(j, j)] >= off
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Matrix3;
+
+    /// The three routes of the cached check: equal to the last one,
+    /// diagonally dominant, factored; and the refusals they must not hide.
+    #[test]
+    fn cached_noise_check_routes() {
+        let zero = Matrix3::<f64>::zeros();
+        let dominant = Matrix3::new(2.0, -1.0, 0.5, -1.0, 3.0, 1.0, 0.5, 1.0, 1.5);
+        assert!(diagonally_dominant(&dominant));
+        assert!(check_noise_cached(&dominant, &zero, Quantity::ProcessNoise).is_ok());
+        // PSD but not dominant: factored.
+        let a = Matrix3::new(1.0, 2.0, 0.0, 0.5, 1.0, 3.0, 1.0, 0.0, 1.0);
+        let psd = a * a.transpose();
+        assert!(!diagonally_dominant(&psd));
+        assert!(check_noise_cached(&psd, &zero, Quantity::ProcessNoise).is_ok());
+        // Indefinite: [[1, 2], [2, 1]] block, not dominant, refused at 1.
+        let bad = Matrix3::new(1.0, 2.0, 0.0, 2.0, 1.0, 0.0, 0.0, 0.0, 1.0);
+        assert_eq!(
+            check_noise_cached(&bad, &zero, Quantity::ProcessNoise),
+            Err(FilterError::NotPositiveDefinite {
+                what: Quantity::ProcessNoise,
+                index: 1
+            })
+        );
+        // Equal to the checked one: accepted without a look; NaN never is.
+        assert!(check_noise_cached(&psd, &psd, Quantity::ProcessNoise).is_ok());
+        let mut nan = psd;
+        nan[(2, 2)] = f64::NAN;
+        assert!(check_noise_cached(&nan, &nan, Quantity::ProcessNoise).is_err());
+    }
 }
