@@ -368,19 +368,27 @@ fn time_going_backwards_or_repeating_is_refused() {
 }
 
 #[test]
-fn an_imu_gap_longer_than_one_and_a_half_intervals_is_refused() {
-    // 10 ms samples; 14 ms is tolerated (jitter), 20 ms is a lost sample.
-    let ok = "0.01 0 0 0 0 0 0\n0.02 0 0 0 0 0 0\n0.034 0 0 0 0 0 0\n";
-    assert!(ImuReader::open(&tmp("imu.txt", ok))
+fn gaps_are_read_and_a_week_rollover_continues_the_time() {
+    // A lost sample is read (`process` bridges or refuses it by its rule).
+    let gap = "0.01 0 0 0 0 0 0\n0.02 0 0 0 0 0 0\n0.04 0 0 0 0 0 0\n";
+    assert!(ImuReader::open(&tmp("imu.txt", gap))
         .unwrap()
         .all(|r| r.is_ok()));
-    let (p, e) = imu_error("0.01 0 0 0 0 0 0\n0.02 0 0 0 0 0 0\n0.04 0 0 0 0 0 0\n");
+    // The end of the week: 604799.99, then 0 — continued as 604800.
+    let roll = "604799.99 0 0 0 0 0 0\n0 0 0 0 0 0 0\n0.01 0 0 0 0 0 0\n";
+    let times: Vec<f64> = ImuReader::open(&tmp("imu.txt", roll))
+        .unwrap()
+        .map(|r| r.unwrap().time)
+        .collect();
+    assert_eq!(times, [604_799.99, 604_800.0, 604_800.01]);
+    // Going back less than half a week is still an error.
+    let (p, e) = imu_error("300000 0 0 0 0 0 0\n1000 0 0 0 0 0 0\n");
     assert_eq!(
         e,
         at(
             &p,
-            "3:1: gap in the IMU data: 0.02 s since line 2, more than 1.5 × the first interval \
-             0.01 s (expected evenly spaced samples)"
+            "2:1: time does not increase: 1000 s after 300000 s at line 1 (expected increasing \
+             seconds of week)"
         )
     );
     // GNSS gaps (outages) are normal.

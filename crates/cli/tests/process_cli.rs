@@ -30,6 +30,7 @@ fn sim(name: &str, seed: u64, duration: f64) -> PathBuf {
         duration: Some(duration),
         imu_rate: None,
         out: dir.clone(),
+        force: false,
     })
     .unwrap();
     dir
@@ -324,6 +325,7 @@ fn the_binary_simulates_processes_and_refuses_bad_input() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.starts_with(
         "KF: 4000 IMU samples to 20 s of week, 16 GNSS fixes used (4 in outages), 16 updates (0 rejected)\n\
+         IMU nominal interval 0.005 s, no gaps\n\
          errors against the truth at 16 aiding epochs (RMS / max |error|):\n  position  east: "
     ), "{stdout}");
     let nav = std::fs::read_to_string(dir.join("result/result.nav")).unwrap();

@@ -75,7 +75,7 @@ impl<R: BufRead> Iterator for GnssReader<R> {
     fn next(&mut self) -> Option<Self::Item> {
         self.stream.next(|s, f| {
             let v = &f.values;
-            s.advance_seconds(f)?;
+            let time = s.advance_seconds(f)?;
             s.latitude(f, 1)?;
             for &c in STD_COLUMNS.iter().filter(|&&c| c < f.count) {
                 if v[c] <= 0.0 {
@@ -92,10 +92,10 @@ impl<R: BufRead> Iterator for GnssReader<R> {
             let pos = Geodetic::new(degrees_to_radians(v[1]), degrees_to_radians(v[2]), v[3]);
             let pos_std = Vector3::new(v[4], v[5], v[6]);
             Ok(if f.count == 13 {
-                GnssFix::new(v[0], pos, Vector3::new(v[7], v[8], v[9]))
+                GnssFix::new(time, pos, Vector3::new(v[7], v[8], v[9]))
                     .with_std(pos_std, Vector3::new(v[10], v[11], v[12]))
             } else {
-                let p = GnssFix::position_only(v[0], pos);
+                let p = GnssFix::position_only(time, pos);
                 p.with_std(pos_std, p.vel_std)
             })
         })

@@ -73,8 +73,6 @@ impl ImuRecord {
 #[derive(Debug)]
 pub struct ImuReader<R> {
     stream: Stream<R>,
-    nominal: Option<f64>,
-    gap_factor: f64,
 }
 
 impl ImuReader<BufReader<File>> {
@@ -88,31 +86,13 @@ impl ImuReader<BufReader<File>> {
 }
 
 impl<R: BufRead> ImuReader<R> {
-    /// An interval longer than this many times the file's first interval
-    /// is a gap.
-    pub const GAP_FACTOR: f64 = 1.5;
-
-    /// Reads IMU lines from `reader`, calling it `path` in errors.
+    /// Reads IMU lines from `reader`, calling it `path` in errors. Gaps
+    /// (dropouts) are not the reader's business: `process` bridges or
+    /// refuses them by its configured timing rule.
     pub fn new(reader: R, path: &Path) -> Self {
         Self {
             stream: Stream::new(Lines::new(reader, path, NAMES, &[7, 8], LAYOUT)),
-            nominal: None,
-            gap_factor: Self::GAP_FACTOR,
         }
-    }
-
-    /// The same reader with another gap factor (`f64::INFINITY` allows
-    /// any gap).
-    ///
-    /// ```
-    /// use kestrel_cli::gins::ImuReader;
-    /// let text = "0.01 0 0 0 0 0 0\n0.02 0 0 0 0 0 0\n0.05 0 0 0 0 0 0\n";
-    /// let r = ImuReader::new(text.as_bytes(), "imu.txt".as_ref()).with_gap_factor(4.0);
-    /// assert!(r.into_iter().all(|x| x.is_ok()));
-    /// ```
-    pub fn with_gap_factor(mut self, factor: f64) -> Self {
-        self.gap_factor = factor;
-        self
     }
 
     /// The file's name.
@@ -126,29 +106,11 @@ impl<R: BufRead> Iterator for ImuReader<R> {
 
     /// The next record; after an error the reader ends.
     fn next(&mut self) -> Option<Self::Item> {
-        let (nominal, gap_factor) = (&mut self.nominal, self.gap_factor);
         self.stream.next(|s, f| {
             let v = &f.values;
-            if let Some((t0, l0)) = s.advance_seconds(f)? {
-                let dt = v[0] - t0;
-                match *nominal {
-                    None => *nominal = Some(dt),
-                    Some(n) if dt > gap_factor * n => {
-                        return Err(s.at(
-                            f,
-                            1,
-                            format!(
-                                "gap in the IMU data: {dt} s since line {l0}, more than \
-                                 {gap_factor} × the first interval {n} s (expected evenly \
-                                 spaced samples)"
-                            ),
-                        ))
-                    }
-                    Some(_) => {}
-                }
-            }
+            let time = s.advance_seconds(f)?;
             Ok(ImuRecord {
-                time: v[0],
+                time,
                 dtheta: Vector3::new(v[1], v[2], v[3]),
                 dvel: Vector3::new(v[4], v[5], v[6]),
                 odometer: (f.count == 8).then_some(v[7]),

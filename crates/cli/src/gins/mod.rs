@@ -18,10 +18,11 @@
 //! exists (about nine doubles in ten), otherwise the radians come back
 //! within one unit in the last place (1e-16 rad, under a nanometre).
 //!
-//! Time rules: IMU times must increase, and an interval longer than
-//! [`ImuReader::GAP_FACTOR`] (1.5) times the file's first interval is a gap
-//! (lost samples) and an error; GNSS and navigation times must increase,
-//! gaps are allowed (outages are normal).
+//! Time rules: IMU, GNSS and navigation times must increase; seconds of
+//! week that fall back by more than half a week are a week rollover and
+//! continue (604 800 s added). Gaps are not the readers' business: `kestrel
+//! process` bridges IMU dropouts or refuses them by its timing rule
+//! (`[imu] max_gap`, `long_gap`), and GNSS outages are normal.
 
 mod angle;
 mod gnss;
@@ -35,5 +36,6 @@ pub use angle::{degrees_exact, degrees_to_radians, invert_exact};
 pub use gnss::{GnssReader, GnssWriter};
 pub use imu::{ImuReader, ImuRecord, ImuWriter};
 pub use line::Fields;
+pub(crate) use nav::WEEK_SECONDS;
 pub use nav::{nav_line, NavReader, NavRecord, NavWriter};
 pub use tail::last_time;

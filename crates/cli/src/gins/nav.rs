@@ -27,7 +27,7 @@ const NAMES: &[&str] = &[
     "yaw, deg",
 ];
 const LAYOUT: &str = "week, time, lat, lon, h, velocity NED, roll, pitch, yaw";
-const WEEK_SECONDS: f64 = 604_800.0;
+pub(crate) const WEEK_SECONDS: f64 = 604_800.0;
 
 /// One navigation line: the GNSS week and the state (its `time` in seconds
 /// of week).
@@ -209,11 +209,14 @@ pub fn nav_line(week: u32, state: &NavState, out: &mut String) {
     use std::fmt::Write as _;
     let [roll, pitch, yaw] = state.euler().to_degrees();
     let v = &state.vel;
+    // Times continued across a week rollover (≥ 604 800 s) go out as the
+    // next week.
+    let weeks = (state.time / WEEK_SECONDS).floor().max(0.0);
+    let (week, time) = (week + weeks as u32, state.time - weeks * WEEK_SECONDS);
     // Writing into a String cannot fail.
     let _ = writeln!(
         out,
-        "{week} {} {} {} {} {} {roll} {pitch} {yaw}",
-        state.time,
+        "{week} {time} {} {} {} {} {roll} {pitch} {yaw}",
         PositionColumns(&state.pos),
         v.x,
         v.y,

@@ -7,6 +7,7 @@ use std::io::BufRead;
 use std::path::Path;
 
 use super::line::{Fields, Lines};
+use super::nav::WEEK_SECONDS as WEEK;
 use crate::InputError;
 
 /// The data lines of one file with the state every reader keeps.
@@ -15,6 +16,8 @@ pub(crate) struct Stream<R> {
     lines: Lines<R>,
     columns: Option<usize>,
     previous: Option<(f64, usize)>,
+    /// Weeks added to seconds of week after a rollover, s.
+    week_offset: f64,
     failed: bool,
 }
 
@@ -25,6 +28,7 @@ impl<R: BufRead> Stream<R> {
             lines,
             columns: None,
             previous: None,
+            week_offset: 0.0,
             failed: false,
         }
     }
@@ -92,13 +96,19 @@ impl<R: BufRead> Stream<R> {
         }
     }
 
-    /// [`advance`](Self::advance) for a time in seconds of week in column 1.
-    pub(crate) fn advance_seconds(
-        &mut self,
-        f: &Fields,
-    ) -> Result<Option<(f64, usize)>, InputError> {
-        let time = f.get(0);
-        self.advance(time, f).map_err(|(t0, l0)| {
+    /// [`advance`](Self::advance) for a time in seconds of week in column 1,
+    /// returning it continued across week rollovers: a time more than half
+    /// a week before the previous one is taken to be in the next week
+    /// (604 800 s added from there on).
+    pub(crate) fn advance_seconds(&mut self, f: &Fields) -> Result<f64, InputError> {
+        let mut time = f.get(0) + self.week_offset;
+        if let Some((t0, _)) = self.previous {
+            if time < t0 - 0.5 * WEEK {
+                self.week_offset += WEEK;
+                time += WEEK;
+            }
+        }
+        self.advance(time, f).map(|_| time).map_err(|(t0, l0)| {
             self.at(
                 f,
                 1,

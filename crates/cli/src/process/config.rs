@@ -10,6 +10,7 @@ use kestrel::nav::scenario::{ErrorModelKind, FadeBlock, FilterKind, InitialUncer
 use kestrel::nav::{Ellipsoid, Euler, Geodetic, ImuSpec, NavState};
 use serde::Deserialize;
 
+use super::timing::{LongGap, TimingRule};
 use super::units::{deg, deg_per_h, deg_per_sqrt_h, m_s_per_sqrt_h, ppm, ug};
 use crate::{CliError, InputError};
 
@@ -82,6 +83,8 @@ struct Imu {
     gyro_scale: f64,
     #[serde(default)]
     accel_scale: f64,
+    max_gap: Option<f64>,
+    long_gap: Option<String>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -178,6 +181,8 @@ pub struct Settings {
     pub output_interval: f64,
     /// Axes of the position errors.
     pub axes: PositionAxes,
+    /// The treatment of gaps in the IMU data.
+    pub timing: TimingRule,
 }
 
 /// Reads and validates the configuration at `path`.
@@ -432,7 +437,26 @@ impl Check<'_> {
             output_interval: self
                 .non_negative("output.interval", f.output.interval.unwrap_or(0.0))?,
             axes,
+            timing: self.timing(&f.imu)?,
         })
+    }
+
+    /// `[imu] max_gap` (s, > 0, default 1) and `long_gap` (`"error"`,
+    /// the default, or `"coast"`).
+    fn timing(&self, m: &Imu) -> Result<TimingRule, InputError> {
+        let default = TimingRule::default();
+        let max_gap = self.positive("imu.max_gap", m.max_gap.unwrap_or(default.max_gap))?;
+        let long_gap = match m.long_gap.as_deref() {
+            None | Some("error") => LongGap::Error,
+            Some("coast") => LongGap::Coast,
+            Some(other) => {
+                return Err(self.err(
+                    "imu.long_gap",
+                    format!("expected `error` or `coast`, found `{other}`"),
+                ))
+            }
+        };
+        Ok(TimingRule { max_gap, long_gap })
     }
 
     fn imu(&self, m: &Imu) -> Result<ImuSpec, InputError> {

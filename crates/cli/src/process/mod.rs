@@ -19,6 +19,7 @@ mod progress;
 mod schedule;
 mod sink;
 mod stats;
+pub mod timing;
 pub mod units;
 
 use std::path::{Path, PathBuf};
@@ -97,6 +98,8 @@ pub struct ProcessReport {
     pub rejected: usize,
     /// Errors against the truth, if a truth file was given.
     pub errors: Option<ErrorStats>,
+    /// The IMU time line: nominal interval and the gaps bridged.
+    pub timing: timing::TimingReport,
     /// Files written.
     pub files: Vec<PathBuf>,
 }
@@ -122,7 +125,7 @@ pub fn run(args: &ProcessArgs) -> Result<(), CliError> {
 /// use kestrel_cli::simulate::{simulate, SimulateArgs};
 /// let dir = std::env::temp_dir().join(format!("kestrel-doc-process-{}", std::process::id()));
 /// simulate(&SimulateArgs { scenario: "002".into(), seed: Some(1), duration: Some(5.0),
-///     imu_rate: None, out: dir.clone() }).unwrap();
+///     imu_rate: None, out: dir.clone(), force: true }).unwrap();
 /// let r = process(&ProcessArgs { imu: dir.join("imu.txt"), gnss: Some(dir.join("gnss.txt")),
 ///     odo: false, truth: Some(dir.join("truth.nav")), config: dir.join("process.toml"),
 ///     out: dir.join("result"), outages: vec!["2:3".parse().unwrap()], no_plots: true }).unwrap();
@@ -160,6 +163,8 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
     };
     let truth = args.truth.as_deref().map(Truth::open).transpose()?;
     std::fs::create_dir_all(&args.out).map_err(|e| CliError::io(&args.out, e))?;
+    refuse_overwriting_inputs(args)?;
+    remove_output_links(&args.out)?;
     let nav_path = args.out.join("result.nav");
     let csv_path = args.out.join("result.csv");
     let end = last_time(&args.imu).unwrap_or(settings.start.time);
@@ -188,9 +193,12 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
         sink,
         fixes_used: 0,
         fixes_in_outage: 0,
+        timing_rule: settings.timing,
+        timing: timing::TimingReport::default(),
+        pending: std::collections::VecDeque::new(),
     };
     let outcome = dispatch(&settings, layout, &mut job);
-    job.sink.finish()?;
+    job.sink.finish(outcome.is_ok())?;
     outcome?;
     let mut files = vec![nav_path, csv_path];
     let errors = if args.truth.is_some() {
@@ -215,8 +223,70 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
         updates: job.sink.updates,
         rejected: job.sink.rejected,
         errors,
+        timing: job.timing.clone(),
         files,
     })
+}
+
+/// The names `process` writes in `--out`.
+fn output_names() -> Vec<String> {
+    let mut names: Vec<String> = [
+        "result.nav",
+        "result.csv",
+        "errors.csv",
+        "error_summary.csv",
+    ]
+    .map(String::from)
+    .to_vec();
+    for stem in crate::plot::FIGURES {
+        names.push(format!("{stem}.png"));
+        names.push(format!("{stem}.svg"));
+    }
+    names
+}
+
+/// Refuses a run whose outputs would replace one of its inputs (say
+/// `--truth out/result.nav --out out`), comparing resolved paths, so a
+/// symbolic link in `--out` pointing at an input is caught too.
+fn refuse_overwriting_inputs(args: &ProcessArgs) -> Result<(), CliError> {
+    let out = std::fs::canonicalize(&args.out).map_err(|e| CliError::io(&args.out, e))?;
+    let inputs = [
+        ("--imu", Some(&args.imu)),
+        ("--gnss", args.gnss.as_ref()),
+        ("--truth", args.truth.as_ref()),
+        ("--config", Some(&args.config)),
+    ];
+    for (flag, input) in inputs {
+        let Some(input) = input else { continue };
+        let Ok(input_real) = std::fs::canonicalize(input) else {
+            continue;
+        };
+        for name in output_names() {
+            let output = out.join(&name);
+            let resolved = std::fs::canonicalize(&output).unwrap_or(output.clone());
+            if resolved == input_real || output == input_real {
+                return Err(CliError::Failed(format!(
+                    "refusing to write {}: it is the {flag} input {}; choose another --out",
+                    args.out.join(&name).display(),
+                    input.display()
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Removes symbolic links standing under output names in `out`, so no
+/// output is ever written through one (the link goes, its target is never
+/// touched; inputs were checked before).
+fn remove_output_links(out: &Path) -> Result<(), CliError> {
+    for name in output_names() {
+        let p = out.join(name);
+        if std::fs::symlink_metadata(&p).is_ok_and(|m| m.file_type().is_symlink()) {
+            std::fs::remove_file(&p).map_err(|e| CliError::io(&p, e))?;
+        }
+    }
+    Ok(())
 }
 
 /// The error CSV, the summary CSV and the plots.
@@ -282,6 +352,7 @@ pub fn summary(r: &ProcessReport) -> String {
          {} updates ({} rejected)\n",
         r.filter, r.samples, r.end_time, r.fixes_used, r.fixes_in_outage, r.updates, r.rejected
     );
+    s += &timing_summary(&r.timing);
     if let Some(e) = &r.errors {
         let p = axis_names(e.axes);
         s += &format!(
@@ -315,6 +386,42 @@ pub fn summary(r: &ProcessReport) -> String {
     }
     for f in &r.files {
         s += &format!("wrote {}\n", f.display());
+    }
+    s
+}
+
+/// The lines on the IMU time line: the nominal interval, and the gaps
+/// bridged as warnings (the first few by line, the longest, the count).
+fn timing_summary(t: &timing::TimingReport) -> String {
+    let mut s = format!("IMU nominal interval {} s", timing::seconds(t.nominal));
+    if t.gaps == 0 {
+        return s + ", no gaps\n";
+    }
+    s += &format!("; {} gaps bridged (total {:.3} s)\n", t.gaps, t.bridged);
+    let kind = |g: &timing::Gap| {
+        if g.long {
+            "long gap coasted"
+        } else {
+            "dropout bridged"
+        }
+    };
+    for g in &t.first_gaps {
+        s += &format!(
+            "warning: IMU {}: {:.4} s before line {}\n",
+            kind(g),
+            g.seconds,
+            g.line
+        );
+    }
+    if t.gaps > t.first_gaps.len() {
+        s += &format!(
+            "warning: … and {} more IMU gaps",
+            t.gaps - t.first_gaps.len()
+        );
+        if let Some(g) = t.longest {
+            s += &format!(" (the longest {:.4} s before line {})", g.seconds, g.line);
+        }
+        s += "\n";
     }
     s
 }

@@ -1,6 +1,7 @@
 //! The processing loop: IMU samples in file order, the aiding due at each,
 //! the outputs — one monomorphised loop per filter type.
 
+use std::collections::VecDeque;
 use std::fs::File;
 use std::io::BufReader;
 use std::iter::Peekable;
@@ -15,6 +16,7 @@ use kestrel::FilterError;
 use super::outage::Outage;
 use super::schedule::Schedule;
 use super::sink::Sink;
+use super::timing::{ImuTiming, TimingReport, TimingRule, NOMINAL_SAMPLES};
 use crate::gins::{GnssReader, ImuReader, ImuRecord};
 use crate::{CliError, InputError};
 
@@ -30,6 +32,11 @@ pub(crate) struct Job {
     /// GNSS fixes used, and skipped in outages.
     pub fixes_used: usize,
     pub fixes_in_outage: usize,
+    /// The treatment of IMU gaps, and what was seen.
+    pub timing_rule: TimingRule,
+    pub timing: TimingReport,
+    /// IMU records read ahead (to estimate the nominal interval).
+    pub pending: VecDeque<ImuRecord>,
 }
 
 impl Job {
@@ -45,6 +52,29 @@ impl Job {
             "no IMU sample after the initial time {} s of week",
             self.start
         )))
+    }
+
+    /// The next IMU record: read ahead first, then from the file.
+    fn next_imu(&mut self) -> Result<Option<ImuRecord>, InputError> {
+        match self.pending.pop_front() {
+            Some(r) => Ok(Some(r)),
+            None => self.imu.next().transpose(),
+        }
+    }
+
+    /// Reads ahead the first samples after the start and sets up the
+    /// timing from their median interval.
+    fn start_timing(&mut self) -> Result<ImuTiming, CliError> {
+        let first = self.first_imu()?;
+        self.pending.push_back(first);
+        while self.pending.len() <= NOMINAL_SAMPLES {
+            match self.imu.next().transpose()? {
+                Some(r) => self.pending.push_back(r),
+                None => break,
+            }
+        }
+        let first: Vec<ImuRecord> = self.pending.iter().copied().collect();
+        Ok(ImuTiming::new(self.timing_rule, self.imu.path(), &first)?)
     }
 
     /// The next GNSS fix to use at the sample at `t` (the next sample at
@@ -104,8 +134,9 @@ where
 {
     let label = job.sink.label;
     let mut schedule = Schedule::new();
-    let mut previous = job.start;
-    let mut current = Some(job.first_imu()?);
+    let mut previous = (job.start, None);
+    let mut timing = job.start_timing()?;
+    let mut current = job.next_imu()?;
     if let (Some(_), Some(r)) = (job.odometer_rate, &current) {
         if r.odometer.is_none() {
             return Err(InputError::at(
@@ -117,26 +148,73 @@ where
             .into());
         }
     }
-    while let Some(sample) = current {
-        let following = job.imu.next().transpose()?;
-        let t = sample.time;
-        let diverged = |error: FilterError| {
-            CliError::Failed(format!("{label} diverged at {t} s of week: {error}"))
+    let outcome = loop {
+        let Some(sample) = current else {
+            break Ok(());
         };
-        engine.imu(&sample.increment(previous)).map_err(diverged)?;
-        previous = t;
-        let mut update = None;
-        while let Some(fix) = job.gnss_due(t, following.as_ref().map(|f| f.time))? {
-            update = Some(gnss(engine, &fix).map_err(diverged)?);
-        }
-        if let (Some(rate), Some(speed)) = (job.odometer_rate, sample.odometer) {
-            if schedule.due(t, rate) {
-                let reading = OdometerReading::new(t, speed);
-                update = Some(odometer(engine, &reading).map_err(diverged)?);
+        match step(
+            job,
+            engine,
+            &mut timing,
+            &mut schedule,
+            &sample,
+            previous,
+            label,
+            &mut gnss,
+            &mut odometer,
+        ) {
+            Ok(following) => {
+                previous = (sample.time, Some(sample.line));
+                current = following;
             }
+            Err(e) => break Err(e),
         }
-        job.sink.sample(engine.solution(), update)?;
-        current = following;
+    };
+    job.timing = timing.report();
+    outcome
+}
+
+/// One IMU sample and the aiding due at it; returns the next sample.
+#[allow(clippy::too_many_arguments)]
+fn step<const N: usize, S, F, A>(
+    job: &mut Job,
+    engine: &mut LooselyCoupled<f64, N, S, F, A>,
+    timing: &mut ImuTiming,
+    schedule: &mut Schedule,
+    sample: &ImuRecord,
+    previous: (f64, Option<usize>),
+    label: &str,
+    gnss: &mut impl FnMut(
+        &mut LooselyCoupled<f64, N, S, F, A>,
+        &GnssFix,
+    ) -> Result<Adaptation, FilterError>,
+    odometer: &mut impl FnMut(
+        &mut LooselyCoupled<f64, N, S, F, A>,
+        &OdometerReading,
+    ) -> Result<Adaptation, FilterError>,
+) -> Result<Option<ImuRecord>, CliError>
+where
+    S: ErrorSystem<N>,
+    F: Form<f64, N> + PredictForm<f64, N, S::Process>,
+    A: PriorAdapter<f64>,
+{
+    let following = job.next_imu()?;
+    let t = sample.time;
+    let diverged = |error: FilterError| {
+        CliError::Failed(format!("{label} diverged at {t} s of week: {error}"))
+    };
+    let increment = timing.increment(sample, previous.0, previous.1)?;
+    engine.imu(&increment).map_err(diverged)?;
+    let mut update = None;
+    while let Some(fix) = job.gnss_due(t, following.as_ref().map(|f| f.time))? {
+        update = Some(gnss(engine, &fix).map_err(diverged)?);
     }
-    Ok(())
+    if let (Some(rate), Some(speed)) = (job.odometer_rate, sample.odometer) {
+        if schedule.due(t, rate) {
+            let reading = OdometerReading::new(t, speed);
+            update = Some(odometer(engine, &reading).map_err(diverged)?);
+        }
+    }
+    job.sink.sample(engine.solution(), update)?;
+    Ok(following)
 }

@@ -11,7 +11,7 @@ use kestrel::nav::{Ellipsoid, NavError, NavState};
 use super::progress::Progress;
 use super::schedule::Schedule;
 use super::stats::Accumulator;
-use crate::gins::{nav_line, NavReader, NavRecord};
+use crate::gins::{nav_line, NavReader, NavRecord, WEEK_SECONDS};
 use crate::{CliError, InputError};
 
 /// Header of the result CSV.
@@ -25,6 +25,9 @@ const SAME_TIME: f64 = 1e-6;
 pub(crate) struct Truth {
     reader: NavReader<BufReader<File>>,
     current: Option<NavRecord>,
+    /// The week of the file's first line: later weeks continue its
+    /// seconds of week (as the IMU and GNSS times do across a rollover).
+    first_week: Option<u32>,
 }
 
 impl Truth {
@@ -32,6 +35,7 @@ impl Truth {
         Ok(Self {
             reader: NavReader::open(path)?,
             current: None,
+            first_week: None,
         })
     }
 
@@ -43,7 +47,12 @@ impl Truth {
                     return Ok((r.state.time <= t + SAME_TIME).then_some(r.state))
                 }
                 _ => match self.reader.next() {
-                    Some(r) => self.current = Some(r?),
+                    Some(r) => {
+                        let mut r = r?;
+                        let first = *self.first_week.get_or_insert(r.week);
+                        r.state.time += f64::from(r.week.saturating_sub(first)) * WEEK_SECONDS;
+                        self.current = Some(r);
+                    }
                     None => return Ok(None),
                 },
             }
@@ -87,17 +96,45 @@ pub(crate) struct SinkSetup<'a> {
     pub progress: Progress,
 }
 
+/// The file a result is written to until the run succeeds: `.NAME.partial`
+/// beside it, so a failed or interrupted run never leaves a file under the
+/// result's name that looks complete.
+pub(crate) fn partial_path(path: &Path) -> PathBuf {
+    let name = path.file_name().map_or_else(
+        || std::ffi::OsString::from("result"),
+        std::ffi::OsStr::to_os_string,
+    );
+    let mut partial = std::ffi::OsString::from(".");
+    partial.push(name);
+    partial.push(".partial");
+    path.with_file_name(partial)
+}
+
+/// Creates the partial file of `path` afresh: a stale one (or a symbolic
+/// link in its place) is removed, never followed.
+fn create_partial(path: &Path) -> Result<File, CliError> {
+    let partial = partial_path(path);
+    match std::fs::remove_file(&partial) {
+        Ok(()) => {}
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+        Err(e) => return Err(CliError::io(&partial, e)),
+    }
+    std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&partial)
+        .map_err(|e| CliError::io(&partial, e))
+}
+
 impl Sink {
     pub(crate) fn new(s: SinkSetup<'_>) -> Result<Self, CliError> {
-        let f = File::create(s.nav_path).map_err(|e| CliError::io(s.nav_path, e))?;
-        let mut nav = BufWriter::with_capacity(1 << 16, f);
+        let mut nav = BufWriter::with_capacity(1 << 16, create_partial(s.nav_path)?);
         writeln!(
             nav,
             "# week sow lat_deg lon_deg h_m vN vE vD (m/s) roll pitch yaw (deg)"
         )
         .map_err(|e| CliError::io(s.nav_path, e))?;
-        let f = File::create(s.csv_path).map_err(|e| CliError::io(s.csv_path, e))?;
-        let mut csv = BufWriter::with_capacity(1 << 16, f);
+        let mut csv = BufWriter::with_capacity(1 << 16, create_partial(s.csv_path)?);
         writeln!(csv, "{RESULT_CSV_HEADER}").map_err(|e| CliError::io(s.csv_path, e))?;
         Ok(Self {
             label: s.label,
@@ -198,14 +235,30 @@ impl Sink {
             .map_err(|e| CliError::io(&self.csv_path, e))
     }
 
-    /// Flushes the files and removes the bar.
-    pub(crate) fn finish(&mut self) -> Result<(), CliError> {
+    /// Removes the bar and flushes the files; when the run `succeeded`,
+    /// puts them in place under their names (a rename, which replaces a
+    /// symbolic link there rather than writing through it), otherwise
+    /// deletes them.
+    pub(crate) fn finish(&mut self, succeeded: bool) -> Result<(), CliError> {
         self.progress.finish();
-        self.csv
+        let flushed = self
+            .csv
             .flush()
-            .map_err(|e| CliError::io(&self.csv_path, e))?;
-        self.nav
-            .flush()
-            .map_err(|e| CliError::io(&self.nav_path, e))
+            .map_err(|e| CliError::io(&self.csv_path, e))
+            .and_then(|()| {
+                self.nav
+                    .flush()
+                    .map_err(|e| CliError::io(&self.nav_path, e))
+            });
+        for path in [&self.nav_path, &self.csv_path] {
+            let partial = partial_path(path);
+            if succeeded && flushed.is_ok() {
+                std::fs::rename(&partial, path).map_err(|e| CliError::io(path, e))?;
+            } else {
+                // Best effort: the run's own error is the one to report.
+                let _ = std::fs::remove_file(&partial);
+            }
+        }
+        flushed
     }
 }

@@ -33,6 +33,10 @@ pub struct SimulateArgs {
     /// Output directory (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
+    /// Replace imu.txt, gnss.txt, truth.nav and process.toml if they exist
+    /// (without it, existing files are never overwritten).
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// What `simulate` wrote.
@@ -107,7 +111,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
 /// use kestrel_cli::simulate::{simulate, SimulateArgs};
 /// let dir = std::env::temp_dir().join(format!("kestrel-doc-simulate-{}", std::process::id()));
 /// let r = simulate(&SimulateArgs { scenario: "003".into(), seed: None, duration: Some(2.0),
-///     imu_rate: None, out: dir.clone() }).unwrap();
+///     imu_rate: None, out: dir.clone(), force: true }).unwrap();
 /// assert_eq!((r.samples, r.fixes, r.odometer), (400, 0, true));
 /// let imu = std::fs::read_to_string(dir.join("imu.txt")).unwrap();
 /// assert_eq!(imu.lines().last().unwrap().split(' ').count(), 8);
@@ -133,6 +137,21 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
     let out = &args.out;
     std::fs::create_dir_all(out).map_err(|e| CliError::io(out, e))?;
     let paths = ["imu.txt", "gnss.txt", "truth.nav", "process.toml"].map(|f| out.join(f));
+    for p in &paths {
+        let Ok(meta) = std::fs::symlink_metadata(p) else {
+            continue;
+        };
+        if !args.force {
+            return Err(CliError::Failed(format!(
+                "refusing to overwrite {}: it exists (pass --force to replace the simulated files)",
+                p.display()
+            )));
+        }
+        // Never write through a link: remove it (its target stays).
+        if meta.file_type().is_symlink() {
+            std::fs::remove_file(p).map_err(|e| CliError::io(p, e))?;
+        }
+    }
     let [imu_path, gnss_path, truth_path, config_path] = &paths;
     let has_odometer = sc.odometer.is_some();
     let head = format!(
