@@ -58,14 +58,19 @@ impl<T: Real, const N: usize> ConstantAcceleration<T, N>
 where
     Size<N>: AccelerationAxes,
 {
-    /// The same jerk density `q ≥ 0` [unit²/s⁵] on every axis.
+    /// The same jerk density `q ≥ 0` [unit²/s⁵] on every axis (refused
+    /// unless finite and `≥ 0`).
     pub fn new(q: T) -> Result<Self, FilterError> {
         Ok(Self {
             q: Densities::uniform(q, axes::<N>())?,
         })
     }
 
-    /// One density per axis; `None` unless `q` has `N / 3` entries.
+    /// One density per axis.
+    ///
+    /// # Errors
+    /// [`FilterError::InvalidParameter`] `"q"` unless `q` has `N / 3`
+    /// entries, each finite and `≥ 0`.
     pub fn per_axis(q: &[T]) -> Result<Self, FilterError> {
         Ok(Self {
             q: Densities::per_axis(q, axes::<N>())?,

@@ -69,7 +69,11 @@ where
         })
     }
 
-    /// One density per axis; `None` unless `q` has `N / 2` entries.
+    /// One density per axis.
+    ///
+    /// # Errors
+    /// [`FilterError::InvalidParameter`] `"q"` unless `q` has `N / 2`
+    /// entries, each finite and `≥ 0`.
     pub fn per_axis(q: &[T]) -> Result<Self, FilterError> {
         Ok(Self {
             q: Densities::per_axis(q, axes::<N>())?,

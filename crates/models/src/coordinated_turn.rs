@@ -24,7 +24,7 @@ use kestrel_core::{FilterError, LinearizedProcess, ProcessModel, Real};
 /// random-walk turn rate of density `turn_density` [rad²/s³].
 ///
 /// The model is generic over the scalar (its parameters are `f64`), so it
-/// also runs on dual numbers: [`AutoJacobian`](crate::AutoJacobian) checks
+/// also runs on dual numbers: `AutoJacobian` (feature `autodiff`) checks
 /// its hand-derived Jacobian exactly.
 ///
 /// ```
