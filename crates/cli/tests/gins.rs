@@ -436,3 +436,61 @@ fn a_reader_stops_after_its_first_error() {
     assert_eq!(r.len(), 2);
     assert!(r[1].is_err());
 }
+
+/// The file's bytes as real logs have them: a UTF-8 byte-order mark, CR LF
+/// line ends and a Latin-1 comment are read; lines ending in CR only, a
+/// line without end (a binary or runaway file) and a non-UTF-8 byte in the
+/// data are refused with the line and a precise reason, after reading at
+/// most one bounded line.
+#[test]
+fn line_ends_byte_order_marks_and_stray_bytes() {
+    let raw = |name: &str, bytes: &[u8]| {
+        let p = tmp(name, "");
+        std::fs::write(&p, bytes).unwrap();
+        p
+    };
+    let ok = b"\xEF\xBB\xBF# caf\xE9 (Latin-1 comment)\r\n0.01 0 0 0 0 0 0\r\n0.02 0 0 0 0 0 0\r\n";
+    let times: Vec<f64> = ImuReader::open(&raw("imu.txt", ok))
+        .unwrap()
+        .map(|r| r.unwrap().time)
+        .collect();
+    assert_eq!(times, [0.01, 0.02]);
+
+    let mut cr = Vec::new();
+    for k in 1..=400 {
+        cr.extend_from_slice(format!("{} 0 0 0 0 0 0\r", f64::from(k) * 0.01).as_bytes());
+    }
+    let p = raw("imu.txt", &cr);
+    let e = ImuReader::open(&p).unwrap().find_map(Result::err).unwrap();
+    assert_eq!(
+        e.to_string(),
+        at(
+            &p,
+            "1: line longer than 4096 bytes; the lines seem to end in CR only (classic Mac): \
+             convert them to LF or CR LF"
+        )
+    );
+
+    let p = raw("imu.txt", &vec![0u8; 1 << 20]);
+    let mut reader = ImuReader::open(&p).unwrap();
+    let e = reader.next().unwrap().unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        at(
+            &p,
+            "1: line longer than 4096 bytes (is this a text file in the expected format?)"
+        )
+    );
+    assert!(reader.next().is_none(), "the reader stops after the error");
+
+    let p = raw("imu.txt", b"0.01 0 0 \xB5 0 0 0\n");
+    let e = ImuReader::open(&p).unwrap().find_map(Result::err).unwrap();
+    assert_eq!(
+        e.to_string(),
+        at(
+            &p,
+            "1:4: byte 0xB5 at byte 10 of the line is not UTF-8 text (only comments after `#` \
+             may hold other bytes)"
+        )
+    );
+}

@@ -2,13 +2,17 @@
 //! blank lines skipped, fields parsed in place.
 
 use std::fs::File;
-use std::io::{BufRead, BufReader};
+use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
 
 use crate::InputError;
 
 /// The most columns any format has (GNSS with velocity).
 pub(crate) const MAX_FIELDS: usize = 13;
+
+/// The longest line read, in bytes (data lines are under 300): a longer one
+/// is an error, so a binary or runaway file never fills memory.
+pub const MAX_LINE_BYTES: usize = 4096;
 
 /// The numbers of one data line.
 ///
@@ -38,8 +42,11 @@ impl Fields {
 pub(crate) struct Lines<R> {
     reader: R,
     path: PathBuf,
+    bytes: Vec<u8>,
+    /// The data part of the current line (before any `#`).
     buf: String,
     line: usize,
+    failed: bool,
     names: &'static [&'static str],
     counts: &'static [usize],
     layout: &'static str,
@@ -66,8 +73,10 @@ impl<R: BufRead> Lines<R> {
         Self {
             reader,
             path: path.to_path_buf(),
+            bytes: Vec::with_capacity(256),
             buf: String::with_capacity(256),
             line: 0,
+            failed: false,
             names,
             counts,
             layout,
@@ -79,38 +88,92 @@ impl<R: BufRead> Lines<R> {
         &self.path
     }
 
-    /// The next data line, `None` at the end of the file.
+    /// The next data line, `None` at the end of the file (and after an
+    /// error of the line layer).
     pub(crate) fn next_fields(&mut self) -> Option<Result<Fields, InputError>> {
+        if self.failed {
+            return None;
+        }
         loop {
-            self.buf.clear();
-            self.line += 1;
-            match self.reader.read_line(&mut self.buf) {
-                Ok(0) => return None,
-                Ok(_) => {}
+            match self.read_line() {
+                Ok(false) => return None,
+                Ok(true) => {}
                 Err(e) => {
-                    return Some(Err(InputError::line(
-                        &self.path,
-                        self.line,
-                        format!("cannot read the line: {e}"),
-                    )))
+                    self.failed = true;
+                    return Some(Err(e));
                 }
             }
-            let text = match self.buf.find('#') {
-                Some(i) => &self.buf[..i],
-                None => &self.buf[..],
-            };
-            if text.bytes().all(|b| b.is_ascii_whitespace()) {
+            if self.buf.bytes().all(|b| b.is_ascii_whitespace()) {
                 continue;
             }
             return Some(self.parse(self.line));
         }
     }
 
+    /// Reads the next line into `buf` (its data part: a UTF-8 byte-order
+    /// mark at the start of the file, a comment after `#` and the line end
+    /// removed; a comment may hold any bytes). `false` at the end.
+    fn read_line(&mut self) -> Result<bool, InputError> {
+        self.bytes.clear();
+        self.buf.clear();
+        self.line += 1;
+        let limit = MAX_LINE_BYTES as u64 + 1;
+        let n = (&mut self.reader)
+            .take(limit)
+            .read_until(b'\n', &mut self.bytes)
+            .map_err(|e| {
+                InputError::line(&self.path, self.line, format!("cannot read the line: {e}"))
+            })?;
+        if n == 0 {
+            return Ok(false);
+        }
+        if self.bytes.len() > MAX_LINE_BYTES {
+            let hint = if self.bytes.contains(&b'\r') {
+                "; the lines seem to end in CR only (classic Mac): convert them to LF or CR LF"
+            } else {
+                " (is this a text file in the expected format?)"
+            };
+            return Err(InputError::line(
+                &self.path,
+                self.line,
+                format!("line longer than {MAX_LINE_BYTES} bytes{hint}"),
+            ));
+        }
+        let mut data = &self.bytes[..];
+        if self.line == 1 {
+            data = data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data);
+        }
+        if let Some(i) = data.iter().position(|&b| b == b'#') {
+            data = &data[..i];
+        }
+        match std::str::from_utf8(data) {
+            Ok(text) => self.buf.push_str(text),
+            Err(e) => {
+                // The column of the field holding the byte.
+                let before = &data[..e.valid_up_to()];
+                let tokens =
+                    std::str::from_utf8(before).map_or(0, |t| t.split_ascii_whitespace().count());
+                // Inside the last token seen, or the start of the next one.
+                let inside = before.last().is_some_and(|b| !b.is_ascii_whitespace());
+                let column = if inside { tokens } else { tokens + 1 };
+                return Err(InputError::at(
+                    &self.path,
+                    self.line,
+                    column,
+                    format!(
+                        "byte 0x{:02X} at byte {} of the line is not UTF-8 text (only comments \
+                         after `#` may hold other bytes)",
+                        data[e.valid_up_to()],
+                        e.valid_up_to() + 1
+                    ),
+                ));
+            }
+        }
+        Ok(true)
+    }
+
     fn parse(&self, line: usize) -> Result<Fields, InputError> {
-        let text = match self.buf.find('#') {
-            Some(i) => &self.buf[..i],
-            None => &self.buf[..],
-        };
+        let text = &self.buf[..];
         let mut values = [0.0; MAX_FIELDS];
         let mut count = 0;
         let mut bad: Option<InputError> = None;

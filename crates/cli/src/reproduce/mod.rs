@@ -30,11 +30,19 @@ use crate::output::write_epochs_csv;
 use crate::plot::{error_figures_with, FigureOptions, FilterTrace};
 use crate::CliError;
 
+/// The most Monte Carlo runs `--runs` accepts.
+pub const MAX_RUNS: usize = 10_000;
+
+/// The most worker threads `--threads` accepts.
+pub const MAX_THREADS: usize = 256;
+
 /// Options shared by `reproduce` and `run`.
 #[derive(Debug, Clone, Args)]
 pub struct MonteCarloArgs {
-    /// Monte Carlo runs per filter; run i draws its sensor noise from seed + i.
-    #[arg(long, default_value_t = 20, value_name = "N")]
+    /// Monte Carlo runs per filter (1 to 10 000); run i draws its sensor
+    /// noise from seed + i.
+    #[arg(long, default_value_t = 20, value_name = "N",
+          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=MAX_RUNS as u64))]
     pub runs: usize,
     /// Seed of run 0 [default: the scenario's own seed].
     #[arg(long, value_name = "S")]
@@ -42,8 +50,10 @@ pub struct MonteCarloArgs {
     /// Output directory; each scenario writes into DIR/<scenario name>/.
     #[arg(long, default_value = "kestrel-out", value_name = "DIR")]
     pub out: PathBuf,
-    /// Worker threads, 0 for one per core. The results do not depend on it.
-    #[arg(long, default_value_t = 0, value_name = "K")]
+    /// Worker threads (0 for one per core, at most 256). The results do
+    /// not depend on it.
+    #[arg(long, default_value_t = 0, value_name = "K",
+          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(0..=MAX_THREADS as u64))]
     pub threads: usize,
     /// Simulate only the first SECONDS of each scenario [default: all of it].
     #[arg(long, value_name = "SECONDS")]

@@ -1,8 +1,11 @@
-//! `kestrel process` on IMU logs with real-world timing, end to end on a
-//! simulated 200 Hz drive: a dropped sample is bridged and reported, a gap
-//! longer than `max_gap` is an error naming the line (or coasted when
-//! configured), a log that starts late after `initial.time` is refused the
-//! same way, and a GPS week rollover in every file changes nothing.
+//! What real logs and real users do to `kestrel`, end to end on a simulated
+//! 200 Hz drive: a dropped IMU sample is bridged and reported, a gap longer
+//! than `max_gap` is an error naming the line (or coasted when configured),
+//! a log that starts late after `initial.time` is refused the same way, a
+//! GPS week rollover in every file changes nothing; outputs never replace
+//! inputs or write through links, a failed run leaves no result file,
+//! `simulate` does not overwrite without `--force`, and run counts and
+//! thread counts are bounded before work starts.
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -304,4 +307,32 @@ fn simulate_refuses_to_overwrite_without_force() {
     a.force = true;
     simulate(&a).unwrap();
     assert_ne!(std::fs::read(dir.join("imu.txt")).unwrap(), imu);
+}
+
+/// `--runs` and `--threads` are checked before any work, with the limit
+/// named (no capacity-overflow panic, no 20 000-thread pool).
+#[test]
+fn run_and_thread_counts_are_bounded() {
+    let kestrel = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_kestrel"))
+            .args(args)
+            .output()
+            .unwrap();
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    let (code, err) = kestrel(&["reproduce", "000", "--runs", "18446744073709551615"]);
+    assert_eq!(code, Some(2));
+    assert!(
+        err.starts_with(
+            "error: invalid value '18446744073709551615' for '--runs <N>': \
+             18446744073709551615 is not in 1..=10000"
+        ),
+        "{err}"
+    );
+    let (code, err) = kestrel(&["reproduce", "000", "--threads", "20000"]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("20000 is not in 0..=256"), "{err}");
 }
