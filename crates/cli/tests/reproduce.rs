@@ -153,7 +153,8 @@ fn bad_arguments_fail_with_one_line() {
     let out = kestrel(&["reproduce", "000", "--runs", "0", "--no-plots"]);
     assert_eq!(
         String::from_utf8_lossy(&out.stderr).trim(),
-        "kestrel: --runs must be at least 1"
+        "error: invalid value '0' for '--runs <N>': 0 is not in 1..=10000\n\n\
+         For more information, try '--help'."
     );
 }
 
