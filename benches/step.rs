@@ -33,6 +33,7 @@ use kestrel::{Ekf, Filter, Real, SrUkf, Ukf};
 use common::adskalman_kf;
 use common::hand::HandKf;
 use common::model::Model;
+use kestrel::real::to_f64;
 
 type Group<'a> = BenchmarkGroup<'a, WallTime>;
 
@@ -82,10 +83,6 @@ fn check<T: Real, const N: usize, const M: usize>(
         dx < to_f64(tol) && dp < to_f64(tol),
         "{what}/{N}: state error {dx:e}, covariance error {dp:e}"
     );
-}
-
-fn to_f64<T: Real>(v: T) -> f64 {
-    kestrel::nalgebra::try_convert(v).unwrap_or(f64::NAN)
 }
 
 /// Checks `f` and times its predict + update.

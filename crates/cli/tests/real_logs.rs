@@ -336,3 +336,38 @@ fn run_and_thread_counts_are_bounded() {
     assert_eq!(code, Some(2));
     assert!(err.contains("20000 is not in 0..=256"), "{err}");
 }
+
+/// The timing keys refuse what they cannot mean, naming the key.
+#[test]
+fn timing_keys_refuse_hostile_values() {
+    let dir = sim(10, 2.0);
+    for (line, want) in [
+        (
+            "max_gap = -1.0",
+            "key `imu.max_gap`: expected a finite value > 0, found -1",
+        ),
+        (
+            "max_gap = nan",
+            "key `imu.max_gap`: expected a finite value > 0, found NaN",
+        ),
+        (
+            "max_gap = 0.0",
+            "key `imu.max_gap`: expected a finite value > 0, found 0",
+        ),
+        (
+            "long_gap = \"maybe\"",
+            "key `imu.long_gap`: expected `error` or `coast`, found `maybe`",
+        ),
+    ] {
+        set_config(&dir, |t| {
+            let base: String = t
+                .lines()
+                .filter(|l| !l.starts_with("max_gap") && !l.starts_with("long_gap"))
+                .map(|l| format!("{l}\n"))
+                .collect();
+            base.replace("[imu]\n", &format!("[imu]\n{line}\n"))
+        });
+        let e = process(&args(&dir, "r")).unwrap_err().to_string();
+        assert!(e.contains(want), "{line}: {e}");
+    }
+}

@@ -9,6 +9,7 @@ use crate::earth::Ellipsoid;
 use crate::error_model::{eighteen, fifteen};
 use crate::imu::ImuIncrement;
 use crate::state::NavState;
+use kestrel_core::real::to_f64;
 
 /// Navigation errors `[φ, δv, δr]` with the definitions of
 /// [`error_model`](crate::error_model): attitude (NED, rad), velocity
@@ -229,8 +230,4 @@ pub fn feedback18<T: Real>(
 
 fn sub3<T: Real, const N: usize>(x: &SVector<T, N>, i: usize) -> Vector3<f64> {
     Vector3::new(to_f64(x[i]), to_f64(x[i + 1]), to_f64(x[i + 2]))
-}
-
-fn to_f64<T: Real>(v: T) -> f64 {
-    nalgebra::try_convert(v).unwrap_or(f64::NAN)
 }

@@ -8,6 +8,7 @@ use crate::correction::{ImuBiases, NavError};
 use crate::earth::Ellipsoid;
 use crate::measurement::ErrorLayout;
 use crate::state::NavState;
+use kestrel_core::real::to_f64;
 
 /// The sensor-error estimates accumulated by feedback, removed from every
 /// later reading: `measured = true + error`, so an IMU increment is
@@ -40,10 +41,6 @@ impl SensorCorrections {
     pub fn correct_speed(&self, speed: f64) -> f64 {
         speed / (1.0 + self.odometer_scale)
     }
-}
-
-fn to_f64<T: Real>(v: T) -> f64 {
-    nalgebra::try_convert(v).unwrap_or(f64::NAN)
 }
 
 /// Block `first..first + 3` of `dx` in `f64`.

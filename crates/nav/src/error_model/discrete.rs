@@ -1,5 +1,6 @@
 //! A linear error-state model discretised from its continuous form.
 
+use kestrel_core::real::to_f64;
 use kestrel_core::{real::lit, LinearizedProcess, ProcessModel, Real};
 use nalgebra::{SMatrix, SVector};
 
@@ -183,10 +184,6 @@ impl<const N: usize> ErrorStateModel<N> {
             discretise(&self.f, &self.q, dt)
         }
     }
-}
-
-fn to_f64<T: Real>(v: T) -> f64 {
-    nalgebra::try_convert(v).unwrap_or(f64::NAN)
 }
 
 impl<T: Real, const N: usize> ProcessModel<T, N> for ErrorStateModel<N> {

@@ -30,6 +30,7 @@ use crate::error_model::ForcingMean;
 use crate::measurement::{ErrorMeasurement, GnssAntenna, InsContext};
 use crate::mechanisation::Strapdown;
 use crate::scenario::{ErrorModelKind, MeasurementKind, Scenario};
+use kestrel_core::real::to_f64;
 
 /// Runs the federated filter whose velocity local is `local` (its state
 /// and covariance are reset to the scenario's P0 by the federation).
@@ -196,8 +197,4 @@ where
         };
         Ok(Some((*ins.state(), adaptation)))
     }))
-}
-
-fn to_f64<T: Real>(v: T) -> f64 {
-    nalgebra::try_convert(v).unwrap_or(f64::NAN)
 }
