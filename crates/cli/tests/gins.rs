@@ -406,7 +406,8 @@ fn gnss_values_out_of_range_are_refused() {
         e,
         at(
             &p,
-            "1:6: expected a positive standard deviation (σ east, m), found 0"
+            "1:6: expected a standard deviation in [1e-150, 1e150] (its square must be a normal \
+             double), found 0 (σ east, m)"
         )
     );
     let (p, e) = gnss_error("1 30 114 10 1 1 1 0 0 0 0.1 0.1 -0.1\n");
@@ -414,13 +415,49 @@ fn gnss_values_out_of_range_are_refused() {
         e,
         at(
             &p,
-            "1:13: expected a positive standard deviation (σ velocity down, m/s), found -0.1"
+            "1:13: expected a standard deviation in [1e-150, 1e150] (its square must be a \
+             normal double), found -0.1 (σ velocity down, m/s)"
         )
     );
     let (p, e) = gnss_error("1 95 114 10 1 1 1\n");
     assert_eq!(
         e,
         at(&p, "1:2: expected a latitude in [-90, 90] deg, found 95")
+    );
+    let (p, e) = gnss_error("1 30 114 10 1e-200 1 1\n");
+    assert_eq!(
+        e,
+        at(
+            &p,
+            "1:5: expected a standard deviation in [1e-150, 1e150] (its square must be a normal \
+             double), found 1e-200 (σ north, m)"
+        )
+    );
+    let (p, e) = gnss_error("1 30 1e308 10 1 1 1\n");
+    assert_eq!(
+        e,
+        at(
+            &p,
+            "1:3: expected a longitude in [-180, 360] deg, found 1e308"
+        )
+    );
+    let (p, e) = gnss_error("1 30 114 -1e7 1 1 1\n");
+    assert_eq!(
+        e,
+        at(
+            &p,
+            "1:4: expected a height in [-12000, 100000] m, found -10000000"
+        )
+    );
+    let (p, e) = gnss_error("1 30 114 10 1 1 1 0 1e30 0 0.1 0.1 0.1\n");
+    assert_eq!(
+        e,
+        at(&p, "1:9: expected a speed in [-1000, 1000] m/s, found 1e30")
+    );
+    let (p, e) = imu_error("0.01 0 0 0 0 0 0 1e30\n");
+    assert_eq!(
+        e,
+        at(&p, "1:8: expected a speed in [-1000, 1000] m/s, found 1e30")
     );
     let (p, e) = nav_error("2300.5 1 30 114 10 0 0 0 0 0 0\n");
     assert_eq!(e, at(&p, "1:1: expected a whole GNSS week, found 2300.5"));

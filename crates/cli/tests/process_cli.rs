@@ -172,6 +172,16 @@ fn configuration_errors_name_the_line_column_or_key() {
     );
     assert!(e.starts_with(&prefix), "{e}");
 
+    // An array of the wrong length: line and column of the array.
+    let text = good.replacen("lever_arm = [", "lever_arm = [9.0, ", 1);
+    let (p, e) = config_error(&dir, &text);
+    let prefix = format!(
+        "{}:{}:13: invalid length 4, expected an array of exactly 3 numbers",
+        p.display(),
+        line_of("lever_arm")
+    );
+    assert!(e.starts_with(&prefix), "{e}");
+
     // Missing table.
     let start = good.find("[initial]").unwrap();
     let end = good.find("[imu]").unwrap();
@@ -184,12 +194,21 @@ fn configuration_errors_name_the_line_column_or_key() {
 
     // Out of range: the key.
     let cases = [
-        ("gyro_arw = ", "gyro_arw = -0.5\n#", "imu.gyro_arw", "expected a finite value ≥ 0, found -0.5"),
-        ("kind = ", "kind = \"ict-erekf\"\nsignificance = 1.5\n#", "filter.significance", "expected a value in (0, 1), found 1.5"),
+        ("gyro_arw = ", "gyro_arw = -0.5\n#", "imu.gyro_arw", "expected 0 (none) or a standard deviation > 0 whose square in SI units is a normal double (neither 0 nor infinite), found -0.5"),
+        ("gyro_arw = ", "gyro_arw = 1e-200\n#", "imu.gyro_arw", "expected 0 (none) or a standard deviation > 0 whose square in SI units is a normal double (neither 0 nor infinite), found 1e-200"),
+        ("position = [", "position = [30.0, 1e308, 0.0]\n#", "initial.position[1]", "expected a longitude in [-180, 360] deg, found 1e308"),
+        ("position = [", "position = [30.0, 114.0, -1e7]\n#", "initial.position[2]", "expected a height in [-12000, 100000] m, found -10000000"),
+        ("velocity = [", "velocity = [0.0, 3e3, 0.0]\n#", "initial.velocity[1]", "expected a speed in [-1000, 1000] m/s, found 3000"),
+        ("attitude = [", "attitude = [0.0, 95.0, 0.0]\n#", "initial.attitude[1]", "expected a pitch in [-90, 90] deg, found 95"),
+        ("gyro_arw = ", "gyro_bias = 10.0\ngyro_arw = ", "imu.gyro_bias", "not used by `process`: the filter's initial gyro bias σ is `initial.std.gyro_bias` (°/h) and a drifting bias is `imu.gyro_markov_sigma` / `imu.gyro_markov_tau`"),
+        ("gyro_arw = ", "accel_scale = 100\ngyro_arw = ", "imu.accel_scale", "not used by `process`: scale-factor errors are not states of the `ins15`, `ins18` or `odometer16` error models; remove the key"),
+        ("kind = ", "kind = \"ict-erekf\"\nsignificance = 1.5\n#", "filter.significance", "expected 0.01 ≤ significance ≤ 0.15 (the range the test is built for), found 1.5"),
+        ("kind = ", "kind = \"fading\"\nrho = 1.5\n#", "filter.rho", "expected 0 ≤ ρ ≤ 1, found 1.5"),
+        ("kind = ", "kind = \"sage-husa-fading\"\nlambda_max = 0.5\n#", "filter.lambda_max", "expected at least 1, found 0.5"),
         ("kind = ", "kind = \"ekf\"\nrho = 0.5\n#", "filter.rho", "not a parameter of kind `ekf`"),
         ("kind = ", "kind = \"kalman\"\n#", "filter.kind", "expected `ekf`, `ict-erekf`, `sage-husa-fading`, `improved-adaptive`, `fading`, `max-threshold` or `fuzzy-adaptive`, found `kalman`"),
         ("position = [", "position = [91.0, 0.0, 0.0]\n#", "initial.position[0]", "expected a latitude in [-90, 90] deg, found 91"),
-        ("position_std = ", "position_std = [1.0, 0.0, 1.0]\n#", "gnss.position_std[1]", "expected a finite value > 0, found 0"),
+        ("position_std = ", "position_std = [1.0, 0.0, 1.0]\n#", "gnss.position_std[1]", "expected a standard deviation > 0 whose square in SI units is a normal double (neither 0 nor infinite), found 0"),
         ("gyro_markov_tau = ", "gyro_markov_tau = -5.0\n#", "imu.gyro_markov_tau", "expected a time > 0 s (or inf), found -5"),
     ];
     for (find, replace, key, msg) in cases {
@@ -400,11 +419,108 @@ fn the_shipped_example_configuration_is_valid() {
     assert_eq!(s.kind, FilterKind::IctErekf { significance: 0.05 });
     assert_eq!(s.imu.gyro_arw, deg_per_sqrt_h(0.2));
     assert_eq!(s.imu.accel_vrw, m_s_per_sqrt_h(0.1));
-    assert_eq!(s.imu.gyro_bias, deg_per_h(10.0));
-    assert_eq!(s.imu.accel_bias, ug(500.0));
+    assert_eq!(s.p0.gyro_bias.x, deg_per_h(10.0));
+    assert_eq!(s.p0.accel_bias.z, ug(500.0));
     assert_eq!(s.imu.gyro_markov_tau, f64::INFINITY);
     assert_eq!(s.lever_arm.z, -0.8);
     assert!(matches!(s.gnss_noise, GnssNoise::Fixed { .. }));
     assert!(s.odometer.is_none());
     assert_eq!(s.output_interval, 0.0);
+}
+
+/// Every filter parameter the configuration takes has exactly the range its
+/// filter accepts: a value is refused by the file if and only if building
+/// the filter with it fails.
+#[test]
+fn filter_parameter_ranges_equal_the_filters_ranges() {
+    use kestrel::nav::experiment::build_filter;
+    use kestrel_cli::process::config::parse;
+    let base = "[initial]\ntime = 0\nposition = [30, 114, 20]\nattitude = [0, 0, 0]\n\
+                [initial.std]\nattitude = [1, 1, 1]\nvelocity = [1, 1, 1]\nposition = [1, 1, 1]\n";
+    let values = [
+        "-1.0", "0.0", "0.005", "0.01", "0.05", "0.15", "0.2", "0.97", "1.0", "1.5", "100.0",
+        "inf", "nan",
+    ];
+    let params = [
+        ("ict-erekf", "significance"),
+        ("improved-adaptive", "significance"),
+        ("improved-adaptive", "forgetting"),
+        ("improved-adaptive", "reserve"),
+        ("improved-adaptive", "lambda_max"),
+        ("sage-husa-fading", "forgetting"),
+        ("sage-husa-fading", "reserve"),
+        ("sage-husa-fading", "lambda_max"),
+        ("fading", "rho"),
+        ("fading", "softening"),
+        ("fading", "lambda_max"),
+    ];
+    let mut refused = 0;
+    for (kind, key) in params {
+        for v in values {
+            let text = format!("{base}[filter]\nkind = \"{kind}\"\n{key} = {v}\n");
+            let parsed = parse(&text, "p.toml".as_ref());
+            // The same kind with the parameter set directly in the library.
+            let x: f64 = v.parse().unwrap();
+            let direct = with_param(kind, key, x);
+            let built = build_filter::<6, _>(&direct, Probe).is_ok();
+            assert_eq!(parsed.is_ok(), built, "{kind} {key} = {v}");
+            if let Err(e) = parsed {
+                refused += 1;
+                let e = e.to_string();
+                assert!(
+                    e.starts_with(&format!("p.toml: key `filter.{key}`: expected ")),
+                    "{e}"
+                );
+            }
+        }
+    }
+    // Some values of every parameter are refused, most are accepted.
+    assert!(refused > 30 && refused < 100, "{refused}");
+}
+
+/// `kind` with its defaults and `key = x`.
+fn with_param(kind: &str, key: &str, x: f64) -> FilterKind {
+    use kestrel::nav::scenario::FadeBlock;
+    let p = |k: &str, d: f64| if k == key { x } else { d };
+    match kind {
+        "ict-erekf" => FilterKind::IctErekf {
+            significance: p("significance", 0.05),
+        },
+        "improved-adaptive" => FilterKind::ImprovedAdaptive {
+            forgetting: p("forgetting", 0.97),
+            reserve: p("reserve", 1.0),
+            lambda_max: p("lambda_max", 10.0),
+            significance: p("significance", 0.05),
+            fade_states: FadeBlock::All,
+        },
+        "sage-husa-fading" => FilterKind::SageHusaFading {
+            forgetting: p("forgetting", 0.97),
+            reserve: p("reserve", 1.0),
+            lambda_max: p("lambda_max", 10.0),
+            fade_states: FadeBlock::All,
+        },
+        _ => FilterKind::StrongTrackingFading {
+            rho: p("rho", 0.95),
+            softening: p("softening", 1.0),
+            lambda_max: p("lambda_max", f64::INFINITY),
+            fade_states: FadeBlock::All,
+        },
+    }
+}
+
+/// A filter loop that only builds the filter.
+struct Probe;
+
+impl kestrel::nav::experiment::FilterLoop<6> for Probe {
+    type Output = ();
+    fn odometer_model(&self) -> bool {
+        false
+    }
+    fn gnss<A>(self, _: A, _: kestrel::nav::scenario::FadeBlock)
+    where
+        A: kestrel::adapter::PriorAdapter<f64>
+            + kestrel::adapter::NoiseAdapter<f64, 6, Report: kestrel::nav::experiment::Describe>,
+    {
+    }
+    fn odometer<P: kestrel::nav::experiment::OdometerProcessing>(self, _: P) {}
 }

@@ -42,7 +42,7 @@ const STD_COLUMNS: [usize; 6] = [4, 5, 6, 10, 11, 12];
 /// assert!(fixes[0].as_ref().unwrap().vel.is_none());
 /// let bad = "1 30 114 20 1 1 0\n";
 /// let e = GnssReader::new(bad.as_bytes(), "gnss.txt".as_ref()).next().unwrap().unwrap_err();
-/// assert!(e.to_string().starts_with("gnss.txt:1:7: expected a positive"));
+/// assert!(e.to_string().starts_with("gnss.txt:1:7: expected a standard deviation"));
 /// ```
 #[derive(Debug)]
 pub struct GnssReader<R> {
@@ -76,19 +76,9 @@ impl<R: BufRead> Iterator for GnssReader<R> {
         self.stream.next(|s, f| {
             let v = &f.values;
             let time = s.advance_seconds(f)?;
-            s.latitude(f, 1)?;
-            for &c in STD_COLUMNS.iter().filter(|&&c| c < f.count) {
-                if v[c] <= 0.0 {
-                    return Err(s.at(
-                        f,
-                        c + 1,
-                        format!(
-                            "expected a positive standard deviation ({}), found {}",
-                            NAMES[c], v[c]
-                        ),
-                    ));
-                }
-            }
+            s.position(f, 1)?;
+            s.sigmas(f, &STD_COLUMNS, NAMES)?;
+            s.speeds(f, &[7, 8, 9])?;
             let pos = Geodetic::new(degrees_to_radians(v[1]), degrees_to_radians(v[2]), v[3]);
             let pos_std = Vector3::new(v[4], v[5], v[6]);
             Ok(if f.count == 13 {

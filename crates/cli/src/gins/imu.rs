@@ -109,6 +109,7 @@ impl<R: BufRead> Iterator for ImuReader<R> {
         self.stream.next(|s, f| {
             let v = &f.values;
             let time = s.advance_seconds(f)?;
+            s.speeds(f, &[7])?;
             Ok(ImuRecord {
                 time,
                 dtheta: Vector3::new(v[1], v[2], v[3]),

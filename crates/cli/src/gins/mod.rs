@@ -29,6 +29,7 @@ mod gnss;
 mod imu;
 mod line;
 mod nav;
+pub mod physical;
 mod stream;
 mod tail;
 

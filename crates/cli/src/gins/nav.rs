@@ -92,7 +92,8 @@ impl<R: BufRead> Iterator for NavReader<R> {
             if v[0] < 0.0 || v[0].fract() != 0.0 || v[0] > f64::from(u32::MAX) {
                 return Err(s.at(f, 1, format!("expected a whole GNSS week, found {}", v[0])));
             }
-            s.latitude(f, 2)?;
+            s.position(f, 2)?;
+            s.speeds(f, &[5, 6, 7])?;
             s.advance(v[0] * WEEK_SECONDS + v[1], f)
                 .map_err(|(_, l0)| {
                     s.at(

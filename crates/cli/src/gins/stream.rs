@@ -8,6 +8,7 @@ use std::path::Path;
 
 use super::line::{Fields, Lines};
 use super::nav::WEEK_SECONDS as WEEK;
+use super::physical;
 use crate::InputError;
 
 /// The data lines of one file with the state every reader keeps.
@@ -120,15 +121,47 @@ impl<R: BufRead> Stream<R> {
         })
     }
 
-    /// Checks the latitude in degrees of column `i` (0-based).
-    pub(crate) fn latitude(&self, f: &Fields, i: usize) -> Result<(), InputError> {
-        let lat = f.get(i);
-        if lat.abs() > 90.0 {
-            return Err(self.at(
-                f,
-                i + 1,
-                format!("expected a latitude in [-90, 90] deg, found {lat}"),
-            ));
+    /// Checks a geodetic position in columns `i..i + 3` (0-based): latitude
+    /// and longitude in degrees, ellipsoidal height in metres, each within
+    /// its [physical range](super::physical).
+    pub(crate) fn position(&self, f: &Fields, i: usize) -> Result<(), InputError> {
+        let checks = [
+            ("a latitude", "deg", physical::LATITUDE),
+            ("a longitude", "deg", physical::LONGITUDE),
+            ("a height", "m", physical::HEIGHT),
+        ];
+        for (k, (what, unit, range)) in checks.into_iter().enumerate() {
+            if let Some(m) = physical::outside(what, unit, f.get(i + k), range) {
+                return Err(self.at(f, i + k + 1, m));
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks that the values in `columns` (0-based) are speeds within
+    /// ±[`SPEED`](physical::SPEED).
+    pub(crate) fn speeds(&self, f: &Fields, columns: &[usize]) -> Result<(), InputError> {
+        let range = (-physical::SPEED, physical::SPEED);
+        for &c in columns.iter().filter(|&&c| c < f.count) {
+            if let Some(m) = physical::outside("a speed", "m/s", f.get(c), range) {
+                return Err(self.at(f, c + 1, m));
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks that the values in `columns` (0-based) are standard
+    /// deviations whose squares are normal doubles; `names` name them.
+    pub(crate) fn sigmas(
+        &self,
+        f: &Fields,
+        columns: &[usize],
+        names: &[&str],
+    ) -> Result<(), InputError> {
+        for &c in columns.iter().filter(|&&c| c < f.count) {
+            if let Some(m) = physical::bad_sigma(f.get(c)) {
+                return Err(self.at(f, c + 1, format!("{m} ({})", names[c])));
+            }
         }
         Ok(())
     }

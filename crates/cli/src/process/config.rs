@@ -4,17 +4,59 @@
 
 use std::path::Path;
 
-use kestrel::nav::experiment::PositionAxes;
+use kestrel::adapter::{NoiseAdapter, PriorAdapter};
+use kestrel::nav::experiment::{
+    build_filter, BuildError, Describe, FilterLoop, OdometerProcessing, PositionAxes,
+};
 use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::scenario::{ErrorModelKind, FadeBlock, FilterKind, InitialUncertainty};
 use kestrel::nav::{Ellipsoid, Euler, Geodetic, ImuSpec, NavState};
-use serde::Deserialize;
+use kestrel::FilterError;
+use serde::{Deserialize, Deserializer};
 
 use super::timing::{LongGap, TimingRule};
-use super::units::{deg, deg_per_h, deg_per_sqrt_h, m_s_per_sqrt_h, ppm, ug};
+use super::units::{deg, deg_per_h, deg_per_sqrt_h, m_s_per_sqrt_h, ug};
+use crate::gins::physical;
 use crate::{CliError, InputError};
 
-type V3 = [f64; 3];
+type V3 = Exact<3>;
+
+/// An array of exactly `N` numbers: a longer or shorter one is an error at
+/// its line and column, never truncated.
+#[derive(Clone, Copy, Debug)]
+struct Exact<const N: usize>([f64; N]);
+
+impl<const N: usize> Default for Exact<N> {
+    fn default() -> Self {
+        Self([0.0; N])
+    }
+}
+
+impl<'de, const N: usize> Deserialize<'de> for Exact<N> {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Count(usize);
+        impl serde::de::Expected for Count {
+            fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                write!(f, "an array of exactly {} numbers", self.0)
+            }
+        }
+        let v = Vec::<f64>::deserialize(d)?;
+        <[f64; N]>::try_from(v.as_slice())
+            .map(Exact)
+            .map_err(|_| serde::de::Error::invalid_length(v.len(), &Count(N)))
+    }
+}
+
+/// A key `process` reads but cannot honour: any value is an error that
+/// says what to use instead.
+#[derive(Debug)]
+struct Refused;
+
+impl<'de> Deserialize<'de> for Refused {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        serde::de::IgnoredAny::deserialize(d).map(|_| Refused)
+    }
+}
 
 /// The file as written.
 #[derive(Debug, Deserialize)]
@@ -69,20 +111,16 @@ struct Imu {
     gyro_arw: f64,
     accel_vrw: Option<f64>,
     accel_vrw_ug_per_sqrt_hz: Option<f64>,
-    #[serde(default)]
-    gyro_bias: f64,
-    #[serde(default)]
-    accel_bias: f64,
+    gyro_bias: Option<Refused>,
+    accel_bias: Option<Refused>,
     #[serde(default)]
     gyro_markov_sigma: f64,
     gyro_markov_tau: Option<f64>,
     #[serde(default)]
     accel_markov_sigma: f64,
     accel_markov_tau: Option<f64>,
-    #[serde(default)]
-    gyro_scale: f64,
-    #[serde(default)]
-    accel_scale: f64,
+    gyro_scale: Option<Refused>,
+    accel_scale: Option<Refused>,
     max_gap: Option<f64>,
     long_gap: Option<String>,
 }
@@ -121,7 +159,7 @@ struct Odometer {
     speed_std: f64,
     nhc_std: f64,
     #[serde(default)]
-    mounting: [f64; 2],
+    mounting: Exact<2>,
     scale_tau: f64,
     scale_sigma: f64,
 }
@@ -227,6 +265,17 @@ fn syntax(text: &str, path: &Path, e: &toml::de::Error) -> CliError {
     }
 }
 
+/// Whether a σ of 0 means "none" or is refused.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Zero {
+    Absent,
+    Refused,
+}
+
+fn id(x: f64) -> f64 {
+    x
+}
+
 struct Check<'a> {
     path: &'a Path,
 }
@@ -260,22 +309,6 @@ impl Check<'_> {
         }
     }
 
-    fn range(&self, key: &str, x: f64, lo: f64, hi: f64) -> Result<f64, InputError> {
-        if x > lo && x < hi {
-            Ok(x)
-        } else {
-            Err(self.err(key, format!("expected a value in ({lo}, {hi}), found {x}")))
-        }
-    }
-
-    fn at_least(&self, key: &str, x: f64, lo: f64) -> Result<f64, InputError> {
-        if x.is_finite() && x >= lo {
-            Ok(x)
-        } else {
-            Err(self.err(key, format!("expected a finite value ≥ {lo}, found {x}")))
-        }
-    }
-
     /// A correlation time: positive, `inf` (or absent) for none.
     fn tau(&self, key: &str, x: Option<f64>) -> Result<f64, InputError> {
         match x {
@@ -293,55 +326,129 @@ impl Check<'_> {
         unit: impl Fn(f64) -> f64,
     ) -> Result<Vector3<f64>, InputError> {
         let mut out = Vector3::zeros();
-        for (i, x) in v.iter().enumerate() {
+        for (i, x) in v.0.iter().enumerate() {
             out[i] = unit(each(self, &format!("{key}[{i}]"), *x)?);
         }
         Ok(out)
     }
 
-    fn settings(&self, f: File) -> Result<Settings, InputError> {
-        let id = |x: f64| x;
-        let i = &f.initial;
-        let [lat, lon, h] = i.position;
-        if lat.is_nan() || lat.abs() > 90.0 {
-            return Err(self.err(
-                "initial.position[0]",
-                format!("expected a latitude in [-90, 90] deg, found {lat}"),
-            ));
+    /// A standard deviation in the unit `unit` converts to SI: positive
+    /// (or 0 when `zero` is `Absent`) with a variance in SI units that is
+    /// a normal double, so it neither underflows to 0 nor overflows.
+    fn sigma(
+        &self,
+        key: &str,
+        x: f64,
+        unit: fn(f64) -> f64,
+        zero: Zero,
+    ) -> Result<f64, InputError> {
+        let si = unit(x);
+        if (zero == Zero::Absent && x == 0.0) || (x > 0.0 && (si * si).is_normal()) {
+            return Ok(si);
         }
-        self.finite("initial.position[1]", lon)?;
-        self.finite("initial.position[2]", h)?;
-        let att = self.vec("initial.attitude", i.attitude, Self::finite, deg)?;
+        let what = match zero {
+            Zero::Absent => "0 (none) or a standard deviation",
+            Zero::Refused => "a standard deviation",
+        };
+        Err(self.err(
+            key,
+            format!(
+                "expected {what} > 0 whose square in SI units is a normal double \
+                 (neither 0 nor infinite), found {}",
+                physical::show(x)
+            ),
+        ))
+    }
+
+    /// [`sigma`](Self::sigma) for each element of `v`.
+    fn sigmas(
+        &self,
+        key: &str,
+        v: V3,
+        unit: fn(f64) -> f64,
+        zero: Zero,
+    ) -> Result<Vector3<f64>, InputError> {
+        let mut out = Vector3::zeros();
+        for (i, x) in v.0.iter().enumerate() {
+            out[i] = self.sigma(&format!("{key}[{i}]"), *x, unit, zero)?;
+        }
+        Ok(out)
+    }
+
+    /// `x` within the physical range `range` ([`physical`]).
+    fn within(
+        &self,
+        key: &str,
+        what: &str,
+        unit: &str,
+        x: f64,
+        range: (f64, f64),
+    ) -> Result<f64, InputError> {
+        match physical::outside(what, unit, x, range) {
+            None => Ok(x),
+            Some(m) => Err(self.err(key, m)),
+        }
+    }
+
+    fn settings(&self, f: File) -> Result<Settings, InputError> {
+        let i = &f.initial;
+        let [lat, lon, h] = i.position.0;
+        let key = "initial.position";
+        let lat = self.within(
+            &format!("{key}[0]"),
+            "a latitude",
+            "deg",
+            lat,
+            physical::LATITUDE,
+        )?;
+        let lon = self.within(
+            &format!("{key}[1]"),
+            "a longitude",
+            "deg",
+            lon,
+            physical::LONGITUDE,
+        )?;
+        let h = self.within(&format!("{key}[2]"), "a height", "m", h, physical::HEIGHT)?;
+        let [roll, pitch, yaw] = i.attitude.0;
+        let key = "initial.attitude";
+        let roll = self.within(&format!("{key}[0]"), "a roll", "deg", roll, (-180.0, 180.0))?;
+        let pitch = self.within(&format!("{key}[1]"), "a pitch", "deg", pitch, (-90.0, 90.0))?;
+        let yaw = self.within(&format!("{key}[2]"), "a yaw", "deg", yaw, (-180.0, 360.0))?;
+        let speed = |c: &Self, key: &str, v: f64| {
+            c.within(
+                key,
+                "a speed",
+                "m/s",
+                v,
+                (-physical::SPEED, physical::SPEED),
+            )
+        };
         let start = NavState::new(
             self.non_negative("initial.time", i.time)?,
             Geodetic::new(deg(lat), deg(lon), h),
-            self.vec("initial.velocity", i.velocity, Self::finite, id)?,
-            Euler::new(att.x, att.y, att.z),
+            self.vec("initial.velocity", i.velocity, speed, id)?,
+            Euler::new(deg(roll), deg(pitch), deg(yaw)),
         );
         let s = &i.std;
+        let key = |k: &str| format!("initial.std.{k}");
         let p0 = InitialUncertainty {
-            attitude: self.vec("initial.std.attitude", s.attitude, Self::positive, deg)?,
-            velocity: self.vec("initial.std.velocity", s.velocity, Self::positive, id)?,
-            position: self.vec("initial.std.position", s.position, Self::positive, id)?,
-            gyro_bias: self.vec(
-                "initial.std.gyro_bias",
-                s.gyro_bias,
-                Self::non_negative,
-                deg_per_h,
-            )?,
-            gyro_markov: self.vec(
-                "initial.std.gyro_markov",
+            attitude: self.sigmas(&key("attitude"), s.attitude, deg, Zero::Refused)?,
+            velocity: self.sigmas(&key("velocity"), s.velocity, id, Zero::Refused)?,
+            position: self.sigmas(&key("position"), s.position, id, Zero::Refused)?,
+            gyro_bias: self.sigmas(&key("gyro_bias"), s.gyro_bias, deg_per_h, Zero::Absent)?,
+            gyro_markov: self.sigmas(
+                &key("gyro_markov"),
                 s.gyro_markov,
-                Self::non_negative,
                 deg_per_h,
+                Zero::Absent,
             )?,
-            accel_bias: self.vec(
-                "initial.std.accel_bias",
-                s.accel_bias,
-                Self::non_negative,
-                ug,
+            accel_bias: self.sigmas(&key("accel_bias"), s.accel_bias, ug, Zero::Absent)?,
+            odometer_scale: self.sigma(
+                &key("odometer_scale"),
+                s.odometer_scale,
+                id,
+                Zero::Absent,
             )?,
-            odometer_scale: self.non_negative("initial.std.odometer_scale", s.odometer_scale)?,
         };
         let imu = self.imu(&f.imu)?;
         let odometer = f.odometer.as_ref().map(|o| self.odometer(o)).transpose()?;
@@ -387,8 +494,8 @@ impl Check<'_> {
                     );
                 };
                 GnssNoise::Fixed {
-                    position: self.vec("gnss.position_std", p, Self::positive, id)?,
-                    velocity: self.vec("gnss.velocity_std", v, Self::positive, id)?,
+                    position: self.sigmas("gnss.position_std", p, id, Zero::Refused)?,
+                    velocity: self.sigmas("gnss.velocity_std", v, id, Zero::Refused)?,
                 }
             }
             other => {
@@ -460,6 +567,40 @@ impl Check<'_> {
     }
 
     fn imu(&self, m: &Imu) -> Result<ImuSpec, InputError> {
+        let use_p0 = |sensor: &str, unit: &str| {
+            format!(
+                "not used by `process`: the filter's initial {sensor} bias σ is \
+                 `initial.std.{sensor}_bias` ({unit}) and a drifting bias is \
+                 `imu.{sensor}_markov_sigma` / `imu.{sensor}_markov_tau`"
+            )
+        };
+        let no_state = "not used by `process`: scale-factor errors are not states of the \
+                        `ins15`, `ins18` or `odometer16` error models; remove the key";
+        let refused = [
+            (
+                "imu.gyro_bias",
+                m.gyro_bias.is_some(),
+                use_p0("gyro", "°/h"),
+            ),
+            (
+                "imu.accel_bias",
+                m.accel_bias.is_some(),
+                use_p0("accel", "µg"),
+            ),
+            (
+                "imu.gyro_scale",
+                m.gyro_scale.is_some(),
+                no_state.to_owned(),
+            ),
+            (
+                "imu.accel_scale",
+                m.accel_scale.is_some(),
+                no_state.to_owned(),
+            ),
+        ];
+        if let Some((key, _, why)) = refused.into_iter().find(|(_, given, _)| *given) {
+            return Err(self.err(key, why));
+        }
         let vrw = match (m.accel_vrw, m.accel_vrw_ug_per_sqrt_hz) {
             (Some(_), Some(_)) => {
                 return Err(self.err(
@@ -467,38 +608,54 @@ impl Check<'_> {
                     "give either accel_vrw or accel_vrw_ug_per_sqrt_hz",
                 ))
             }
-            (Some(x), None) => m_s_per_sqrt_h(self.non_negative("imu.accel_vrw", x)?),
-            (None, Some(x)) => ug(self.non_negative("imu.accel_vrw_ug_per_sqrt_hz", x)?),
+            (Some(x), None) => self.sigma("imu.accel_vrw", x, m_s_per_sqrt_h, Zero::Absent)?,
+            (None, Some(x)) => self.sigma("imu.accel_vrw_ug_per_sqrt_hz", x, ug, Zero::Absent)?,
             (None, None) => 0.0,
         };
+        let z = Zero::Absent;
         Ok(ImuSpec {
-            gyro_bias: deg_per_h(self.non_negative("imu.gyro_bias", m.gyro_bias)?),
-            gyro_arw: deg_per_sqrt_h(self.non_negative("imu.gyro_arw", m.gyro_arw)?),
-            gyro_markov_sigma: deg_per_h(
-                self.non_negative("imu.gyro_markov_sigma", m.gyro_markov_sigma)?,
-            ),
+            gyro_arw: self.sigma("imu.gyro_arw", m.gyro_arw, deg_per_sqrt_h, z)?,
+            gyro_markov_sigma: self.sigma(
+                "imu.gyro_markov_sigma",
+                m.gyro_markov_sigma,
+                deg_per_h,
+                z,
+            )?,
             gyro_markov_tau: self.tau("imu.gyro_markov_tau", m.gyro_markov_tau)?,
-            accel_bias: ug(self.non_negative("imu.accel_bias", m.accel_bias)?),
             accel_vrw: vrw,
-            accel_markov_sigma: ug(
-                self.non_negative("imu.accel_markov_sigma", m.accel_markov_sigma)?
-            ),
+            accel_markov_sigma: self.sigma(
+                "imu.accel_markov_sigma",
+                m.accel_markov_sigma,
+                ug,
+                z,
+            )?,
             accel_markov_tau: self.tau("imu.accel_markov_tau", m.accel_markov_tau)?,
-            gyro_scale: ppm(self.finite("imu.gyro_scale", m.gyro_scale)?),
-            accel_scale: ppm(self.finite("imu.accel_scale", m.accel_scale)?),
+            ..ImuSpec::perfect()
         })
     }
 
     fn odometer(&self, o: &Odometer) -> Result<OdometerSettings, InputError> {
         Ok(OdometerSettings {
             rate: self.positive("odometer.rate", o.rate)?,
-            speed_std: self.positive("odometer.speed_std", o.speed_std)?,
-            nhc_std: self.positive("odometer.nhc_std", o.nhc_std)?,
+            speed_std: self.sigma("odometer.speed_std", o.speed_std, id, Zero::Refused)?,
+            nhc_std: self.sigma("odometer.nhc_std", o.nhc_std, id, Zero::Refused)?,
             mounting: [
-                deg(self.finite("odometer.mounting[0]", o.mounting[0])?),
-                deg(self.finite("odometer.mounting[1]", o.mounting[1])?),
+                deg(self.within(
+                    "odometer.mounting[0]",
+                    "a pitch",
+                    "deg",
+                    o.mounting.0[0],
+                    (-90.0, 90.0),
+                )?),
+                deg(self.within(
+                    "odometer.mounting[1]",
+                    "a yaw",
+                    "deg",
+                    o.mounting.0[1],
+                    (-180.0, 360.0),
+                )?),
             ],
-            scale_sigma: self.non_negative("odometer.scale_sigma", o.scale_sigma)?,
+            scale_sigma: self.sigma("odometer.scale_sigma", o.scale_sigma, id, Zero::Absent)?,
         })
     }
 
@@ -562,10 +719,11 @@ impl Check<'_> {
                 ),
             ));
         }
-        let sig = |d| self.range("filter.significance", f.significance.unwrap_or(d), 0.0, 1.0);
-        let forgetting = || self.range("filter.forgetting", f.forgetting.unwrap_or(0.97), 0.0, 1.0);
-        let reserve = || self.at_least("filter.reserve", f.reserve.unwrap_or(1.0), 1.0);
-        let lambda_max = || self.at_least("filter.lambda_max", f.lambda_max.unwrap_or(10.0), 1.0);
+        // The adapters check their own ranges (`validate` below), so the file
+        // accepts exactly what the filter accepts.
+        let sig = |d| f.significance.unwrap_or(d);
+        let forgetting = f.forgetting.unwrap_or(0.97);
+        let reserve = f.reserve.unwrap_or(1.0);
         let fade_name = f.fade_states.as_deref().unwrap_or("all");
         let Some(fade_states) = FadeBlock::from_name(fade_name) else {
             return Err(self.err(
@@ -576,51 +734,30 @@ impl Check<'_> {
                 ),
             ));
         };
-        Ok(match name {
+        let lambda_max = f.lambda_max.unwrap_or(10.0);
+        let kind = match name {
             "ict-erekf" => FilterKind::IctErekf {
-                significance: sig(0.05)?,
+                significance: sig(0.05),
             },
             "sage-husa-fading" => FilterKind::SageHusaFading {
-                forgetting: forgetting()?,
-                reserve: reserve()?,
-                lambda_max: lambda_max()?,
+                forgetting,
+                reserve,
+                lambda_max,
                 fade_states,
             },
             "improved-adaptive" => FilterKind::ImprovedAdaptive {
-                forgetting: forgetting()?,
-                reserve: reserve()?,
-                lambda_max: lambda_max()?,
-                significance: sig(0.05)?,
+                forgetting,
+                reserve,
+                lambda_max,
+                significance: sig(0.05),
                 fade_states,
             },
-            "fading" => {
-                let rho = f.rho.unwrap_or(0.95);
-                if !(rho > 0.0 && rho <= 1.0) {
-                    return Err(self.err(
-                        "filter.rho",
-                        format!("expected a value in (0, 1], found {rho}"),
-                    ));
-                }
-                FilterKind::StrongTrackingFading {
-                    rho,
-                    softening: self.at_least(
-                        "filter.softening",
-                        f.softening.unwrap_or(1.0),
-                        1.0,
-                    )?,
-                    lambda_max: match f.lambda_max {
-                        None => f64::INFINITY,
-                        Some(l) if l >= 1.0 => l,
-                        Some(l) => {
-                            return Err(self.err(
-                                "filter.lambda_max",
-                                format!("expected a value ≥ 1 (or inf), found {l}"),
-                            ))
-                        }
-                    },
-                    fade_states,
-                }
-            }
+            "fading" => FilterKind::StrongTrackingFading {
+                rho: f.rho.unwrap_or(0.95),
+                softening: f.softening.unwrap_or(1.0),
+                lambda_max: f.lambda_max.unwrap_or(f64::INFINITY),
+                fade_states,
+            },
             "max-threshold" => FilterKind::MaxThreshold {
                 threshold: self.positive("filter.threshold", f.threshold.unwrap_or(1.0))?,
             },
@@ -635,6 +772,61 @@ impl Check<'_> {
                 FilterKind::FuzzyAdaptive { window }
             }
             _ => FilterKind::Standard,
-        })
+        };
+        self.validate(&kind, odometer)?;
+        Ok(kind)
     }
+
+    /// Builds the filter of `kind` once, turning a parameter it refuses into
+    /// an error naming the key, the filter's own range and the value.
+    fn validate(&self, kind: &FilterKind, odometer: bool) -> Result<(), InputError> {
+        let Err(BuildError::Invalid(FilterError::InvalidParameter { name, valid })) =
+            build_filter::<6, _>(kind, Probe { odometer })
+        else {
+            return Ok(());
+        };
+        let key = match name {
+            "max_fade" => "lambda_max",
+            other => other,
+        };
+        let value = match (key, *kind) {
+            ("significance", FilterKind::IctErekf { significance })
+            | ("significance", FilterKind::ImprovedAdaptive { significance, .. }) => significance,
+            ("forgetting", FilterKind::SageHusaFading { forgetting, .. })
+            | ("forgetting", FilterKind::ImprovedAdaptive { forgetting, .. }) => forgetting,
+            ("reserve", FilterKind::SageHusaFading { reserve, .. })
+            | ("reserve", FilterKind::ImprovedAdaptive { reserve, .. }) => reserve,
+            ("lambda_max", FilterKind::SageHusaFading { lambda_max, .. })
+            | ("lambda_max", FilterKind::ImprovedAdaptive { lambda_max, .. })
+            | ("lambda_max", FilterKind::StrongTrackingFading { lambda_max, .. }) => lambda_max,
+            ("rho", FilterKind::StrongTrackingFading { rho, .. }) => rho,
+            ("softening", FilterKind::StrongTrackingFading { softening, .. }) => softening,
+            _ => return Err(self.err("filter.kind", format!("{name}: expected {valid}"))),
+        };
+        Err(self.err(
+            &format!("filter.{key}"),
+            format!("expected {valid}, found {}", physical::show(value)),
+        ))
+    }
+}
+
+/// A filter loop that only builds the filter (to check its parameters).
+struct Probe {
+    odometer: bool,
+}
+
+impl FilterLoop<6> for Probe {
+    type Output = ();
+
+    fn odometer_model(&self) -> bool {
+        self.odometer
+    }
+
+    fn gnss<A>(self, _: A, _: FadeBlock)
+    where
+        A: PriorAdapter<f64> + NoiseAdapter<f64, 6, Report: Describe>,
+    {
+    }
+
+    fn odometer<P: OdometerProcessing>(self, _: P) {}
 }

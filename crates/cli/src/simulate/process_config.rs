@@ -9,7 +9,7 @@ use kestrel::nav::{Ellipsoid, NavState};
 
 use crate::gins::{degrees_exact, invert_exact};
 use crate::process::filter_params::{filter_params, Param};
-use crate::process::units::{deg_per_h, deg_per_sqrt_h, m_s_per_sqrt_h, ppm, ug};
+use crate::process::units::{deg_per_h, deg_per_sqrt_h, m_s_per_sqrt_h, ug};
 
 /// `x` in a unit whose conversion to SI is `to_si` (by the factor `per`),
 /// chosen so that the conversion gives back exactly `x` where possible.
@@ -131,8 +131,6 @@ pub fn process_config(scenario: &Scenario, start: &NavState, kind: &FilterKind) 
         "accel_vrw = {}",
         f(inv(m.accel_vrw, m_s_per_sqrt_h(1.0), m_s_per_sqrt_h))
     );
-    let _ = writeln!(w, "gyro_bias = {}", f(dph(m.gyro_bias)));
-    let _ = writeln!(w, "accel_bias = {}", f(inv(m.accel_bias, ug(1.0), ug)));
     let _ = writeln!(w, "gyro_markov_sigma = {}", f(dph(m.gyro_markov_sigma)));
     let _ = writeln!(w, "gyro_markov_tau = {}", f(m.gyro_markov_tau));
     let _ = writeln!(
@@ -140,13 +138,7 @@ pub fn process_config(scenario: &Scenario, start: &NavState, kind: &FilterKind) 
         "accel_markov_sigma = {}",
         f(inv(m.accel_markov_sigma, ug(1.0), ug))
     );
-    let _ = writeln!(w, "accel_markov_tau = {}", f(m.accel_markov_tau));
-    let _ = writeln!(w, "gyro_scale = {}", f(inv(m.gyro_scale, ppm(1.0), ppm)));
-    let _ = writeln!(
-        w,
-        "accel_scale = {}\n",
-        f(inv(m.accel_scale, ppm(1.0), ppm))
-    );
+    let _ = writeln!(w, "accel_markov_tau = {}\n", f(m.accel_markov_tau));
 
     let _ = writeln!(w, "[filter]");
     let lines = filter_lines(kind).unwrap_or_else(|| {
