@@ -8,7 +8,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use kestrel::nav::experiment::{run, RunOptions};
 use kestrel::nav::scenario::{by_name, FilterKind};
-use kestrel_cli::process::{process, ProcessArgs};
+use kestrel_cli::process::{process, ProcessArgs, WindowKind};
 use kestrel_cli::simulate::{process_config, simulate, SimulateArgs};
 
 /// A fresh directory in the temporary directory, unique to this process
@@ -67,7 +67,10 @@ fn round_trip_with(name: &str, kind: &FilterKind, seed: u64, duration: f64, odo:
     let report = process(&args(&dir, odo)).unwrap();
     let opts = RunOptions::default().with_duration(duration);
     let mem = run(&sc, kind, seed, &opts).unwrap().summary;
-    let e = report.errors.unwrap();
+    // Every IMU sample has a truth line: all are compared; the runner's
+    // summary is over the aiding epochs, after the update.
+    assert_eq!(report.errors.unwrap().epochs, report.samples);
+    let e = report.aiding_errors.unwrap();
     assert_eq!(report.filter, kind.label());
     assert_eq!(report.rejected, mem.rejected, "{name}: same rejections");
     assert_eq!(report.updates, mem.epochs, "{name}: same aiding epochs");
@@ -244,14 +247,75 @@ fn outage_windows_drop_the_fixes_inside_them() {
     a.outages = vec!["20:40".parse().unwrap(), "50.5:52.5".parse().unwrap()];
     a.out = dir.join("coast");
     let coast = process(&a).unwrap();
-    // 1 Hz fixes at 1 … 60 s: 20 … 40 (21) and 51, 52 (2) are dropped.
+    // 1 Hz fixes at 1 … 60 s: the half-open windows drop 20 … 39 (20) and
+    // 51, 52 (2).
     assert_eq!(full.fixes_used, 60);
-    assert_eq!((coast.fixes_used, coast.fixes_in_outage), (37, 23));
-    assert_eq!(coast.updates, 37);
-    assert_eq!(coast.errors.unwrap().epochs, 37);
+    assert_eq!((coast.fixes_used, coast.fixes_in_outage), (38, 22));
+    assert_eq!(coast.updates, 38);
+    assert_eq!(coast.aiding_errors.unwrap().epochs, 38);
+    // Every IMU sample is compared, in the outages too.
+    assert_eq!(coast.errors.unwrap().epochs, 12_000);
+    // The same as deleting those lines from the GNSS file, bit for bit.
+    let gnss = std::fs::read_to_string(dir.join("gnss.txt")).unwrap();
+    let kept: String = gnss
+        .lines()
+        .filter(|l| {
+            let t: f64 = l.split(' ').next().unwrap().parse().unwrap_or(-1.0);
+            !((20.0..40.0).contains(&t) || (50.5..52.5).contains(&t))
+        })
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(dir.join("gnss-cut.txt"), kept).unwrap();
+    let mut cut = args(&dir, false);
+    cut.gnss = Some(dir.join("gnss-cut.txt"));
+    cut.out = dir.join("cut");
+    let deleted = process(&cut).unwrap();
+    assert_eq!(deleted.fixes_used, 38);
+    let read = |d: &str| std::fs::read_to_string(dir.join(d).join("result.nav")).unwrap();
+    assert_eq!(read("cut"), read("coast"));
+    // The drift table: the two windows with 200 Hz epochs, then the gaps
+    // of the fixes used (1.5 s and longer): 19 … 40 s and 50 … 53 s.
+    let d = &coast.drift;
+    let row = |k: usize| (d[k].kind, d[k].start, d[k].end, d[k].epochs);
+    assert_eq!(row(0), (WindowKind::Outage, 20.0, 40.0, 4_000));
+    assert_eq!(row(1), (WindowKind::Outage, 50.5, 52.5, 400));
+    assert_eq!(row(2), (WindowKind::Gap, 19.0, 40.0, 4_200));
+    assert_eq!(row(3), (WindowKind::Gap, 50.0, 53.0, 600));
+    assert_eq!(d.len(), 4);
+    // The window's statistics are those of the errors.csv rows in it.
+    let errors = std::fs::read_to_string(dir.join("coast").join("errors.csv")).unwrap();
+    let (mut n, mut sum, mut max) = (0, 0.0, 0.0f64);
+    for l in errors.lines().skip(1) {
+        let v: Vec<f64> = l.split(',').take(4).map(|x| x.parse().unwrap()).collect();
+        if (20.0..40.0).contains(&v[0]) {
+            let h = v[1].hypot(v[2]);
+            n += 1;
+            sum += h * h;
+            max = max.max(h);
+        }
+    }
+    let (rms, largest) = d[0].horizontal.unwrap();
+    assert_eq!((n, largest), (4_000, max));
+    assert!((rms - (sum / 4000.0).sqrt()).abs() < 1e-12 * rms);
+    assert_eq!(errors.lines().count(), 12_001);
+    let drift_csv = std::fs::read_to_string(dir.join("coast").join("drift.csv")).unwrap();
+    assert!(drift_csv.starts_with("kind,start_s,end_s,duration_s,epochs,"));
+    assert!(drift_csv
+        .lines()
+        .nth(1)
+        .unwrap()
+        .starts_with("outage,20,40,20,4000,"));
+    let summary = kestrel_cli::process::summary(&coast);
+    assert!(
+        summary.contains("errors against the truth at 12000 epochs"),
+        "{summary}"
+    );
+    assert!(
+        summary.contains("  outage 20 to 40 s (20 s): 4000 epochs, horizontal "),
+        "{summary}"
+    );
     // The solutions agree bit for bit up to the first dropped fix (20 s)
     // and part there.
-    let read = |d: &str| std::fs::read_to_string(dir.join(d).join("result.nav")).unwrap();
     let (a, b) = (read("result"), read("coast"));
     let time = |l: &str| l.split(' ').nth(1).unwrap().parse::<f64>().unwrap();
     let pairs: Vec<(&str, &str)> = a
@@ -343,9 +407,9 @@ fn the_binary_simulates_processes_and_refuses_bad_input() {
     );
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.starts_with(
-        "KF: 4000 IMU samples to 20 s of week, 16 GNSS fixes used (4 in outages), 16 updates (0 rejected)\n\
+        "KF: 4000 IMU samples to 20 s of week, 17 GNSS fixes used (3 in outages), 17 updates (0 rejected)\n\
          IMU nominal interval 0.005 s, no gaps\n\
-         errors against the truth at 16 aiding epochs (RMS / max |error|):\n  position  east: "
+         errors against the truth at 4000 epochs (every truth epoch of the run; RMS / max |error|):\n  position  east: "
     ), "{stdout}");
     let nav = std::fs::read_to_string(dir.join("result/result.nav")).unwrap();
     assert_eq!(nav.lines().filter(|l| !l.starts_with('#')).count(), 4000);

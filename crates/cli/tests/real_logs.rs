@@ -371,3 +371,107 @@ fn timing_keys_refuse_hostile_values() {
         assert!(e.contains(want), "{line}: {e}");
     }
 }
+
+/// Rewrites the truth file with `shift` s added to every time.
+fn shift_truth(dir: &Path, shift: f64) {
+    let p = dir.join("truth.nav");
+    let text = std::fs::read_to_string(&p).unwrap();
+    let shifted: String = text
+        .lines()
+        .map(|l| {
+            if l.starts_with('#') {
+                return format!("{l}\n");
+            }
+            let mut f: Vec<String> = l.split(' ').map(String::from).collect();
+            f[1] = (f[1].parse::<f64>().unwrap() + shift).to_string();
+            f.join(" ") + "\n"
+        })
+        .collect();
+    std::fs::write(&p, shifted).unwrap();
+}
+
+#[test]
+fn errors_are_evaluated_at_every_truth_epoch_and_never_over_nothing() {
+    let dir = sim(4, 10.0);
+    let exact = process(&args(&dir, "exact")).unwrap();
+    let all = exact.errors.unwrap();
+    assert_eq!(all.epochs, exact.samples);
+    assert_eq!(exact.aiding_errors.unwrap().epochs, exact.fixes_used);
+
+    // A truth 2 µs off every sample: compared at its own epochs, the
+    // solution interpolated between samples; same errors to 1e-3.
+    shift_truth(&dir, 2e-6);
+    let off = process(&args(&dir, "off")).unwrap();
+    let e = off.errors.unwrap();
+    assert_eq!(
+        e.epochs,
+        exact.samples - 1,
+        "the last truth epoch is after the run"
+    );
+    for i in 0..3 {
+        let (a, b) = (e.rms_position[i], all.rms_position[i]);
+        assert!((a - b).abs() < 1e-3 * b, "{a} vs {b}");
+    }
+    // No truth epoch is at an aiding sample: there is no "after the update"
+    // line rather than one over nothing.
+    assert!(off.aiding_errors.is_none());
+    assert!(
+        !summary(&off).contains("aiding epochs"),
+        "{}",
+        summary(&off)
+    );
+
+    // A truth that starts after the run, and an empty one: errors that say
+    // why, and no result files.
+    shift_truth(&dir, 100.0);
+    let e = process(&args(&dir, "late")).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        format!(
+            "{}: no truth epoch to compare with: the truth starts at 100.000002 s of week, \
+             after the run's last IMU sample at 10 s",
+            dir.join("truth.nav").display()
+        )
+    );
+    assert!(!dir.join("late/result.nav").exists() && !dir.join("late/errors.csv").exists());
+    std::fs::write(dir.join("truth.nav"), "# nothing yet\n").unwrap();
+    let e = process(&args(&dir, "empty")).unwrap_err().to_string();
+    assert!(
+        e.ends_with("no truth epoch to compare with: the file has no data lines"),
+        "{e}"
+    );
+}
+
+#[test]
+fn drift_is_reported_per_outage_and_gap_and_never_over_nothing() {
+    let dir = sim(6, 10.0);
+    // Without GNSS the run is compared at every epoch; no aiding line.
+    let mut a = args(&dir, "ins");
+    a.gnss = None;
+    let ins = process(&a).unwrap();
+    assert_eq!(ins.errors.unwrap().epochs, 2000);
+    assert!(ins.aiding_errors.is_none() && ins.drift.is_empty());
+    // Every fix inside an outage; a second window after the run.
+    let mut a = args(&dir, "windows");
+    a.outages = vec!["0:100".parse().unwrap(), "200:300".parse().unwrap()];
+    let r = process(&a).unwrap();
+    assert_eq!((r.fixes_used, r.fixes_in_outage), (0, 10));
+    assert_eq!(r.drift[0].epochs, 2000);
+    assert_eq!(r.drift[1].epochs, 0);
+    assert!(r.drift[1].horizontal.is_none());
+    let s = summary(&r);
+    assert!(
+        s.contains("  outage 200 to 300 s (100 s): no truth epoch in the window\n"),
+        "{s}"
+    );
+    let csv = std::fs::read_to_string(dir.join("windows/drift.csv")).unwrap();
+    assert_eq!(csv.lines().nth(2), Some("outage,200,300,100,0,,,,"));
+    // No fix used: the whole run is one gap of the fixes.
+    assert_eq!(r.drift.len(), 3);
+    assert_eq!(
+        (r.drift[2].start, r.drift[2].end, r.drift[2].epochs),
+        (0.0, 10.0, 2000)
+    );
+    // The printed statistics are numbers, never NaN or inf.
+    assert!(!s.contains("NaN") && !s.contains("inf"), "{s}");
+}

@@ -63,6 +63,10 @@ pub struct EpochCsvWriter<W: io::Write> {
     field: String,
 }
 
+/// The column after the attitude errors in the every-epoch layout
+/// ([`EpochCsvWriter::with_update_column`]): 1 at an aiding epoch.
+pub const UPDATE_COLUMN: &str = "update";
+
 impl<W: io::Write> EpochCsvWriter<W> {
     /// A writer to `out` that has written the header.
     ///
@@ -78,14 +82,71 @@ impl<W: io::Write> EpochCsvWriter<W> {
         })
     }
 
-    /// Writes one row.
+    /// A writer of rows at every compared epoch, aiding or not: after the
+    /// attitude errors an `update` column (1 at an aiding epoch, else 0),
+    /// and the update's columns are empty where there was none.
+    ///
+    /// # Errors
+    /// The I/O error of writing the header.
+    ///
+    /// ```
+    /// use kestrel_cli::output::EpochCsvWriter;
+    /// use kestrel::nav::experiment::{EpochRecord, PositionAxes};
+    /// use kestrel::nav::nalgebra::Vector3;
+    /// let mut w = EpochCsvWriter::with_update_column(Vec::new(), PositionAxes::NorthEastDown).unwrap();
+    /// let r = EpochRecord { time: 0.5, position: Vector3::new(1.0, 0.0, 0.0),
+    ///     velocity: Vector3::zeros(), attitude: Vector3::zeros(), adaptation: Default::default() };
+    /// w.write_compared(&r, false).unwrap();
+    /// let text = String::from_utf8(w.finish_into_inner().unwrap()).unwrap();
+    /// assert!(text.starts_with("time_s,pos_north_m,pos_east_m,pos_down_m,vel_north_mps,"));
+    /// assert!(text.lines().next().unwrap().contains(",att_down_deg,update,nis,"));
+    /// assert_eq!(text.lines().nth(1), Some("0.5,1.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0,,,,,,,,"));
+    /// ```
+    pub fn with_update_column(out: W, axes: PositionAxes) -> io::Result<Self> {
+        let mut csv = csv::Writer::from_writer(out);
+        let columns = epoch_columns(axes);
+        let header = columns[..10]
+            .iter()
+            .chain(&[UPDATE_COLUMN])
+            .chain(&columns[10..]);
+        csv.write_record(header)?;
+        Ok(Self {
+            csv,
+            axes,
+            field: String::with_capacity(32),
+        })
+    }
+
+    /// Writes one row of the every-epoch layout; `update`: whether an
+    /// aiding update was made at this epoch (its columns are empty if not).
     ///
     /// # Errors
     /// The I/O error of writing it.
-    pub fn write(&mut self, r: &EpochRecord) -> io::Result<()> {
+    pub fn write_compared(&mut self, r: &EpochRecord, update: bool) -> io::Result<()> {
+        self.errors(r)?;
+        if update {
+            self.text("1")?;
+            self.adaptation(&r.adaptation)?;
+        } else {
+            self.text("0")?;
+            for _ in 0..8 {
+                self.text("")?;
+            }
+        }
+        Ok(self.csv.write_record(None::<&[u8]>)?)
+    }
+
+    /// Flushes what is buffered, keeping the writer.
+    ///
+    /// # Errors
+    /// The I/O error of flushing.
+    pub fn flush(&mut self) -> io::Result<()> {
+        self.csv.flush()
+    }
+
+    fn errors(&mut self, r: &EpochRecord) -> io::Result<()> {
         let to_deg = 180.0 / std::f64::consts::PI;
         let p = self.axes.from_ned(&r.position);
-        let a = &r.adaptation;
         self.number(r.time)?;
         for v in p.iter().chain(r.velocity.iter()) {
             self.number(*v)?;
@@ -93,6 +154,10 @@ impl<W: io::Write> EpochCsvWriter<W> {
         for v in r.attitude.iter() {
             self.number(v * to_deg)?;
         }
+        Ok(())
+    }
+
+    fn adaptation(&mut self, a: &kestrel::nav::experiment::Adaptation) -> io::Result<()> {
         self.number(a.nis)?;
         self.text(if a.rejected { "1" } else { "0" })?;
         self.number(a.fade)?;
@@ -102,7 +167,16 @@ impl<W: io::Write> EpochCsvWriter<W> {
         self.csv.write_field(&self.field)?;
         self.number(a.compression)?;
         self.number(a.alpha1)?;
-        self.number(a.noise_trace)?;
+        self.number(a.noise_trace)
+    }
+
+    /// Writes one row.
+    ///
+    /// # Errors
+    /// The I/O error of writing it.
+    pub fn write(&mut self, r: &EpochRecord) -> io::Result<()> {
+        self.errors(r)?;
+        self.adaptation(&r.adaptation)?;
         Ok(self.csv.write_record(None::<&[u8]>)?)
     }
 

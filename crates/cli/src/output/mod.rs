@@ -11,7 +11,7 @@ use std::path::Path;
 
 use kestrel::nav::experiment::{EpochRecord, PositionAxes};
 
-pub use epochs::{epoch_columns, EpochCsvWriter};
+pub use epochs::{epoch_columns, EpochCsvWriter, UPDATE_COLUMN};
 
 use crate::CliError;
 

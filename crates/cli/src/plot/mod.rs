@@ -130,6 +130,24 @@ pub fn error_figures_with(
     traces: &[FilterTrace<'_>],
     options: &FigureOptions,
 ) -> Result<Vec<PathBuf>, CliError> {
+    figures_of(dir, title, axes, traces, traces, options)
+}
+
+/// As [`error_figures_with`] with the errors drawn from `errors` (say every
+/// epoch compared with a reference) and the adapter activity from `aiding`
+/// (the aiding epochs), the same filters in the same order.
+///
+/// # Errors
+/// As [`error_figures`].
+pub fn figures_of(
+    dir: &Path,
+    title: &str,
+    axes: PositionAxes,
+    errors: &[FilterTrace<'_>],
+    aiding: &[FilterTrace<'_>],
+    options: &FigureOptions,
+) -> Result<Vec<PathBuf>, CliError> {
+    let traces = errors;
     std::fs::create_dir_all(dir).map_err(|e| CliError::io(dir, e))?;
     let filters: Vec<String> = traces.iter().map(|t| t.label.to_string()).collect();
     let nis_bound = options.nis_dof.and_then(|dof| {
@@ -146,7 +164,7 @@ pub fn error_figures_with(
         ("position error", panels::position(traces, axes)),
         ("velocity error", panels::velocity(traces)),
         ("attitude error", panels::attitude(traces)),
-        ("adapter activity", panels::adaptation(traces, nis_bound)),
+        ("adapter activity", panels::adaptation(aiding, nis_bound)),
     ];
     let mut written = Vec::with_capacity(2 * FIGURES.len());
     for ((what, panels), stem) in figures.into_iter().zip(FIGURES) {

@@ -12,6 +12,8 @@
 
 pub mod config;
 mod dispatch;
+mod drift;
+mod evaluation;
 pub(crate) mod filter_params;
 mod outage;
 mod pipeline;
@@ -29,18 +31,20 @@ use kestrel::nav::experiment::PositionAxes;
 use kestrel::nav::scenario::FilterKind;
 
 use crate::gins::{last_time, GnssReader, ImuReader};
-use crate::plot::{error_figures, FilterTrace};
+use crate::plot::{figures_of, FilterTrace};
 use crate::{CliError, InputError};
 
 pub use config::Settings;
+pub use drift::{gap_threshold, WindowDrift, WindowKind};
 pub use outage::Outage;
 pub use sink::RESULT_CSV_HEADER;
-pub use stats::ErrorStats;
+pub use stats::{ErrorStats, SumOfSquares};
 
 use dispatch::{dispatch, GnssLayout};
+use drift::DriftTable;
+use evaluation::{Evaluation, EvaluationSetup, Truth};
 use pipeline::Job;
-use sink::{Sink, SinkSetup, Truth};
-use stats::Accumulator;
+use sink::{Sink, SinkSetup};
 
 /// Arguments of `kestrel process`.
 #[derive(Clone, Debug, Args)]
@@ -70,8 +74,8 @@ pub struct ProcessArgs {
     /// Output directory (created if missing).
     #[arg(long, value_name = "DIR", default_value = "kestrel-process")]
     pub out: PathBuf,
-    /// Ignore GNSS fixes from START to END (seconds of week, inclusive);
-    /// repeat for several windows.
+    /// Ignore GNSS fixes at START ≤ t < END (seconds of week, half-open:
+    /// as if those lines were deleted); repeat for several windows.
     #[arg(long = "outage", value_name = "START:END")]
     pub outages: Vec<Outage>,
     /// Do not draw the error plots.
@@ -96,8 +100,15 @@ pub struct ProcessReport {
     pub updates: usize,
     /// Updates rejected by an adapter.
     pub rejected: usize,
-    /// Errors against the truth, if a truth file was given.
+    /// Errors against the truth at every truth epoch in the run, if a
+    /// truth file was given.
     pub errors: Option<ErrorStats>,
+    /// The same at the aiding epochs only (after the update); `None`
+    /// without a truth or without an update at a truth epoch.
+    pub aiding_errors: Option<ErrorStats>,
+    /// Horizontal and vertical errors in each outage window and data gap
+    /// (with a truth file).
+    pub drift: Vec<WindowDrift>,
     /// The IMU time line: nominal interval and the gaps bridged.
     pub timing: timing::TimingReport,
     /// Files written.
@@ -165,19 +176,32 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
     std::fs::create_dir_all(&args.out).map_err(|e| CliError::io(&args.out, e))?;
     refuse_overwriting_inputs(args)?;
     remove_output_links(&args.out)?;
+    let evaluation = match truth {
+        None => None,
+        Some(truth) => Some(Evaluation::new(EvaluationSetup {
+            earth: settings.earth,
+            label: settings.kind.label(),
+            axes: settings.axes,
+            truth,
+            csv_path: args.out.join("errors.csv"),
+            drift: DriftTable::new(
+                &args.outages,
+                args.gnss.as_deref().and_then(gnss_gap_threshold),
+                settings.start.time,
+            ),
+        })?),
+    };
     let nav_path = args.out.join("result.nav");
     let csv_path = args.out.join("result.csv");
     let end = last_time(&args.imu).unwrap_or(settings.start.time);
     let label = settings.kind.label();
     let sink = Sink::new(SinkSetup {
         label,
-        earth: settings.earth,
         week: settings.week,
         interval: settings.output_interval,
         nav_path: &nav_path,
         csv_path: &csv_path,
-        truth,
-        acc: Accumulator::new(settings.axes),
+        evaluation,
         progress: progress::Progress::new(settings.start.time, end),
     })?;
     let mut job = Job {
@@ -198,22 +222,30 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
         pending: std::collections::VecDeque::new(),
     };
     let outcome = dispatch(&settings, layout, &mut job);
+    // Nothing compared is an error, never a row of zeros.
+    let end_time = job.sink.end_time;
+    let outcome = outcome.and_then(|()| match &mut job.sink.evaluation {
+        Some(e) if e.all.epochs() == 0 => Err(CliError::Failed(format!(
+            "{}: {}",
+            args.truth
+                .as_deref()
+                .unwrap_or(Path::new("truth"))
+                .display(),
+            e.why_nothing_compared(settings.start.time, end_time)
+        ))),
+        _ => Ok(()),
+    });
     job.sink.finish(outcome.is_ok())?;
     outcome?;
     let mut files = vec![nav_path, csv_path];
-    let errors = if args.truth.is_some() {
-        let stats = job.sink.acc.finish();
-        files.extend(write_errors(
-            args,
-            &settings,
-            label,
-            &job.sink.records,
-            &stats,
-        )?);
-        Some(stats)
-    } else {
-        None
-    };
+    let (mut errors, mut aiding_errors, mut drift) = (None, None, Vec::new());
+    if let Some(e) = job.sink.evaluation.take() {
+        errors = e.all.finish();
+        aiding_errors = e.aiding.finish();
+        drift = e.drift.clone().finish(job.sink.end_time);
+        files.push(args.out.join("errors.csv"));
+        files.extend(write_errors(args, &settings, label, &e, &drift)?);
+    }
     Ok(ProcessReport {
         filter: label,
         samples: job.sink.samples,
@@ -223,9 +255,24 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
         updates: job.sink.updates,
         rejected: job.sink.rejected,
         errors,
+        aiding_errors,
+        drift,
         timing: job.timing.clone(),
         files,
     })
+}
+
+/// 1.5 × the median interval of the first 21 intervals of the GNSS file:
+/// longer intervals between fixes are data gaps. `None` if the file has
+/// fewer than two fixes (an unreadable line is the main reader's to report).
+fn gnss_gap_threshold(path: &Path) -> Option<f64> {
+    let times: Vec<f64> = GnssReader::open(path)
+        .ok()?
+        .take(22)
+        .map_while(Result::ok)
+        .map(|f| f.time)
+        .collect();
+    gap_threshold(&times)
 }
 
 /// The names `process` writes in `--out`.
@@ -235,6 +282,7 @@ fn output_names() -> Vec<String> {
         "result.csv",
         "errors.csv",
         "error_summary.csv",
+        "drift.csv",
     ]
     .map(String::from)
     .to_vec();
@@ -289,26 +337,76 @@ fn remove_output_links(out: &Path) -> Result<(), CliError> {
     Ok(())
 }
 
-/// The error CSV, the summary CSV and the plots.
+/// The summary CSV, the drift table and the plots (the error CSV was
+/// streamed during the run).
 fn write_errors(
     args: &ProcessArgs,
     settings: &Settings,
     label: &'static str,
-    records: &[kestrel::nav::experiment::EpochRecord],
-    stats: &ErrorStats,
+    e: &Evaluation,
+    drift: &[WindowDrift],
 ) -> Result<Vec<PathBuf>, CliError> {
     let dir = &args.out;
-    let errors = dir.join("errors.csv");
-    crate::output::write_epochs_csv(&errors, settings.axes, records)?;
     let summary = dir.join("error_summary.csv");
-    write_summary_csv(&summary, stats)?;
-    let mut files = vec![errors, summary];
-    if !args.no_plots && !records.is_empty() {
+    write_summary_csv(
+        &summary,
+        &[("all", e.all.finish()), ("aiding", e.aiding.finish())],
+    )?;
+    let drift_path = dir.join("drift.csv");
+    write_drift_csv(&drift_path, drift)?;
+    let mut files = vec![summary, drift_path];
+    if !args.no_plots {
         let title = String::from("kestrel process");
-        let traces = [FilterTrace { label, records }];
-        files.extend(error_figures(dir, &title, settings.axes, &traces)?);
+        let errors = [FilterTrace {
+            label,
+            records: &e.errors.records,
+        }];
+        let aiding = [FilterTrace {
+            label,
+            records: &e.updates.records,
+        }];
+        let options = crate::plot::FigureOptions::default();
+        files.extend(figures_of(
+            dir,
+            &title,
+            settings.axes,
+            &errors,
+            &aiding,
+            &options,
+        )?);
     }
     Ok(files)
+}
+
+/// `drift.csv`: one row per window; the statistics are empty for a window
+/// without compared epochs.
+fn write_drift_csv(path: &Path, drift: &[WindowDrift]) -> Result<(), CliError> {
+    let mut text = String::from(
+        "kind,start_s,end_s,duration_s,epochs,rms_horizontal_m,max_horizontal_m,\
+         rms_vertical_m,max_vertical_m\n",
+    );
+    for w in drift {
+        let pair =
+            |p: Option<(f64, f64)>| p.map_or_else(|| ",".to_owned(), |(r, m)| format!("{r},{m}"));
+        text += &format!(
+            "{},{},{},{},{},{},{}\n",
+            w.kind.name(),
+            w.start,
+            w.end,
+            w.end - w.start,
+            w.epochs,
+            pair(w.horizontal),
+            pair(w.vertical)
+        );
+    }
+    write_atomically(path, &text)
+}
+
+/// Writes `text` to `path` through a partial file renamed into place.
+fn write_atomically(path: &Path, text: &str) -> Result<(), CliError> {
+    let mut f = sink::create_partial(path)?;
+    std::io::Write::write_all(&mut f, text.as_bytes()).map_err(|e| CliError::io(path, e))?;
+    sink::settle(path, true)
 }
 
 /// Names of the position axes.
@@ -319,30 +417,37 @@ fn axis_names(axes: PositionAxes) -> [&'static str; 3] {
     }
 }
 
-fn write_summary_csv(path: &Path, s: &ErrorStats) -> Result<(), CliError> {
-    let p = axis_names(s.axes);
-    let deg = |v: f64| v.to_degrees();
-    let mut text = String::from("quantity,axis,unit,rms,max_abs\n");
-    for (i, axis) in p.iter().enumerate() {
-        text += &format!(
-            "position,{axis},m,{},{}\n",
-            s.rms_position[i], s.max_position[i]
-        );
+/// `error_summary.csv`: RMS and max |error| per quantity and axis, over
+/// every compared epoch (`all`) and over the aiding epochs (`aiding`);
+/// a set without epochs has no rows.
+fn write_summary_csv(path: &Path, sets: &[(&str, Option<ErrorStats>)]) -> Result<(), CliError> {
+    let mut text = String::from("epochs,count,quantity,axis,unit,rms,max_abs\n");
+    for (name, stats) in sets {
+        let Some(s) = stats else { continue };
+        let head = format!("{name},{}", s.epochs);
+        let p = axis_names(s.axes);
+        let deg = |v: f64| v.to_degrees();
+        for (i, axis) in p.iter().enumerate() {
+            text += &format!(
+                "{head},position,{axis},m,{},{}\n",
+                s.rms_position[i], s.max_position[i]
+            );
+        }
+        for (i, a) in ["north", "east", "down"].iter().enumerate() {
+            text += &format!(
+                "{head},velocity,{a},m/s,{},{}\n",
+                s.rms_velocity[i], s.max_velocity[i]
+            );
+        }
+        for (i, a) in ["north", "east", "down"].iter().enumerate() {
+            text += &format!(
+                "{head},attitude,{a},deg,{},{}\n",
+                deg(s.rms_attitude[i]),
+                deg(s.max_attitude[i])
+            );
+        }
     }
-    for (i, a) in ["north", "east", "down"].iter().enumerate() {
-        text += &format!(
-            "velocity,{a},m/s,{},{}\n",
-            s.rms_velocity[i], s.max_velocity[i]
-        );
-    }
-    for (i, a) in ["north", "east", "down"].iter().enumerate() {
-        text += &format!(
-            "attitude,{a},deg,{},{}\n",
-            deg(s.rms_attitude[i]),
-            deg(s.max_attitude[i])
-        );
-    }
-    std::fs::write(path, text).map_err(|e| CliError::io(path, e))
+    write_atomically(path, &text)
 }
 
 /// The text `kestrel process` prints.
@@ -354,39 +459,74 @@ pub fn summary(r: &ProcessReport) -> String {
     );
     s += &timing_summary(&r.timing);
     if let Some(e) = &r.errors {
-        let p = axis_names(e.axes);
-        s += &format!(
-            "errors against the truth at {} aiding epochs (RMS / max |error|):\n",
-            e.epochs
+        s += &error_block(
+            &format!(
+                "errors against the truth at {} epochs (every truth epoch of the run; \
+                 RMS / max |error|):\n",
+                e.epochs
+            ),
+            e,
         );
-        let row = |name: &str, axes: [&str; 3], unit: &str, rms: [f64; 3], max: [f64; 3]| {
-            format!(
-                "  {name:<9} {}: {:.4} / {:.4}  {}: {:.4} / {:.4}  {}: {:.4} / {:.4} {unit}\n",
-                axes[0], rms[0], max[0], axes[1], rms[1], max[1], axes[2], rms[2], max[2]
-            )
-        };
-        let v = |x: &kestrel::nav::nalgebra::Vector3<f64>| [x.x, x.y, x.z];
-        let d = |x: &kestrel::nav::nalgebra::Vector3<f64>| v(&x.map(f64::to_degrees));
-        let ned = ["north", "east", "down"];
-        s += &row("position", p, "m", v(&e.rms_position), v(&e.max_position));
-        s += &row(
-            "velocity",
-            ned,
-            "m/s",
-            v(&e.rms_velocity),
-            v(&e.max_velocity),
+    }
+    if let Some(e) = &r.aiding_errors {
+        s += &error_block(
+            &format!("… at the {} aiding epochs, after the update:\n", e.epochs),
+            e,
         );
-        s += &row(
-            "attitude",
-            ned,
-            "deg",
-            d(&e.rms_attitude),
-            d(&e.max_attitude),
-        );
+    }
+    if !r.drift.is_empty() {
+        s += "drift without GNSS (horizontal / vertical error, RMS and max):\n";
+        for w in &r.drift {
+            s += &format!(
+                "  {:<6} {} to {} s ({} s): ",
+                w.kind.name(),
+                w.start,
+                w.end,
+                w.end - w.start
+            );
+            s += &match (w.horizontal, w.vertical) {
+                (Some((rh, mh)), Some((rv, mv))) => format!(
+                    "{} epochs, horizontal {rh:.4} / {mh:.4} m, vertical {rv:.4} / {mv:.4} m\n",
+                    w.epochs
+                ),
+                _ => "no truth epoch in the window\n".to_owned(),
+            };
+        }
     }
     for f in &r.files {
         s += &format!("wrote {}\n", f.display());
     }
+    s
+}
+
+/// The RMS / max rows of `e` under `title`.
+fn error_block(title: &str, e: &ErrorStats) -> String {
+    let p = axis_names(e.axes);
+    let row = |name: &str, axes: [&str; 3], unit: &str, rms: [f64; 3], max: [f64; 3]| {
+        format!(
+            "  {name:<9} {}: {:.4} / {:.4}  {}: {:.4} / {:.4}  {}: {:.4} / {:.4} {unit}\n",
+            axes[0], rms[0], max[0], axes[1], rms[1], max[1], axes[2], rms[2], max[2]
+        )
+    };
+    let v = |x: &kestrel::nav::nalgebra::Vector3<f64>| [x.x, x.y, x.z];
+    let d = |x: &kestrel::nav::nalgebra::Vector3<f64>| v(&x.map(f64::to_degrees));
+    let ned = ["north", "east", "down"];
+    let mut s = title.to_owned();
+    s += &row("position", p, "m", v(&e.rms_position), v(&e.max_position));
+    s += &row(
+        "velocity",
+        ned,
+        "m/s",
+        v(&e.rms_velocity),
+        v(&e.max_velocity),
+    );
+    s += &row(
+        "attitude",
+        ned,
+        "deg",
+        d(&e.rms_attitude),
+        d(&e.max_attitude),
+    );
     s
 }
 

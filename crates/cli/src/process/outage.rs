@@ -2,26 +2,28 @@
 
 use std::str::FromStr;
 
-/// GNSS fixes with `start ≤ t ≤ end` (seconds of week) are not used.
+/// GNSS fixes with `start ≤ t < end` (seconds of week) are not used: the
+/// window is half-open, so `100:160` drops the 60 fixes of a 1 Hz file from
+/// 100 to 159 s, exactly as deleting those lines would.
 ///
 /// ```
 /// use kestrel_cli::process::Outage;
 /// let o: Outage = "100:160.5".parse().unwrap();
-/// assert!(o.contains(100.0) && o.contains(160.5) && !o.contains(161.0));
+/// assert!(o.contains(100.0) && o.contains(160.0) && !o.contains(160.5));
 /// assert!("160:100".parse::<Outage>().is_err());
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Outage {
     /// First second of the window.
     pub start: f64,
-    /// Last second of the window.
+    /// End of the window (not in it).
     pub end: f64,
 }
 
 impl Outage {
     /// Whether `t` falls in the window.
     pub fn contains(&self, t: f64) -> bool {
-        t >= self.start && t <= self.end
+        t >= self.start && t < self.end
     }
 }
 

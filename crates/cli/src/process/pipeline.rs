@@ -109,6 +109,9 @@ impl Job {
                 continue;
             }
             self.fixes_used += 1;
+            if let Some(e) = self.sink.evaluation.as_mut() {
+                e.drift.fix(fix.time);
+            }
             return Ok(Some(fix));
         }
     }

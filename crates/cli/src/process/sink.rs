@@ -2,68 +2,25 @@
 //! the truth, the progress bar.
 
 use std::fs::File;
-use std::io::{BufReader, BufWriter, Write};
+use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use kestrel::nav::experiment::{Adaptation, EpochRecord};
-use kestrel::nav::{Ellipsoid, NavError, NavState};
+use kestrel::nav::experiment::Adaptation;
+use kestrel::nav::NavState;
 
+use super::evaluation::Evaluation;
 use super::progress::Progress;
 use super::schedule::Schedule;
-use super::stats::Accumulator;
-use crate::gins::{nav_line, NavReader, NavRecord, WEEK_SECONDS};
-use crate::{CliError, InputError};
+use crate::gins::nav_line;
+use crate::CliError;
 
 /// Header of the result CSV.
 pub const RESULT_CSV_HEADER: &str =
     "week,time_s,lat_deg,lon_deg,height_m,vn_mps,ve_mps,vd_mps,roll_deg,pitch_deg,yaw_deg";
 
-/// Truth times within this many seconds of a sample are the same instant.
-const SAME_TIME: f64 = 1e-6;
-
-/// The truth file, read forward as the run goes.
-pub(crate) struct Truth {
-    reader: NavReader<BufReader<File>>,
-    current: Option<NavRecord>,
-    /// The week of the file's first line: later weeks continue its
-    /// seconds of week (as the IMU and GNSS times do across a rollover).
-    first_week: Option<u32>,
-}
-
-impl Truth {
-    pub(crate) fn open(path: &Path) -> Result<Self, InputError> {
-        Ok(Self {
-            reader: NavReader::open(path)?,
-            current: None,
-            first_week: None,
-        })
-    }
-
-    /// The truth at `t` s of week, if the file has a line at that time.
-    fn at(&mut self, t: f64) -> Result<Option<NavState>, InputError> {
-        loop {
-            match self.current {
-                Some(r) if r.state.time >= t - SAME_TIME => {
-                    return Ok((r.state.time <= t + SAME_TIME).then_some(r.state))
-                }
-                _ => match self.reader.next() {
-                    Some(r) => {
-                        let mut r = r?;
-                        let first = *self.first_week.get_or_insert(r.week);
-                        r.state.time += f64::from(r.week.saturating_sub(first)) * WEEK_SECONDS;
-                        self.current = Some(r);
-                    }
-                    None => return Ok(None),
-                },
-            }
-        }
-    }
-}
-
 /// The outputs of a run.
 pub(crate) struct Sink {
     pub label: &'static str,
-    earth: Ellipsoid,
     week: u32,
     interval: f64,
     schedule: Schedule,
@@ -73,9 +30,7 @@ pub(crate) struct Sink {
     line: String,
     csv_line: Vec<u8>,
     csv_path: PathBuf,
-    truth: Option<Truth>,
-    pub records: Vec<EpochRecord>,
-    pub acc: Accumulator,
+    pub evaluation: Option<Evaluation>,
     pub updates: usize,
     pub rejected: usize,
     pub samples: usize,
@@ -86,13 +41,11 @@ pub(crate) struct Sink {
 /// Where the result goes and what it is compared with.
 pub(crate) struct SinkSetup<'a> {
     pub label: &'static str,
-    pub earth: Ellipsoid,
     pub week: u32,
     pub interval: f64,
     pub nav_path: &'a Path,
     pub csv_path: &'a Path,
-    pub truth: Option<Truth>,
-    pub acc: Accumulator,
+    pub evaluation: Option<Evaluation>,
     pub progress: Progress,
 }
 
@@ -112,7 +65,7 @@ pub(crate) fn partial_path(path: &Path) -> PathBuf {
 
 /// Creates the partial file of `path` afresh: a stale one (or a symbolic
 /// link in its place) is removed, never followed.
-fn create_partial(path: &Path) -> Result<File, CliError> {
+pub(crate) fn create_partial(path: &Path) -> Result<File, CliError> {
     let partial = partial_path(path);
     match std::fs::remove_file(&partial) {
         Ok(()) => {}
@@ -138,7 +91,6 @@ impl Sink {
         writeln!(csv, "{RESULT_CSV_HEADER}").map_err(|e| CliError::io(s.csv_path, e))?;
         Ok(Self {
             label: s.label,
-            earth: s.earth,
             week: s.week,
             interval: s.interval,
             schedule: Schedule::new(),
@@ -148,9 +100,7 @@ impl Sink {
             line: String::with_capacity(256),
             csv_line: Vec::with_capacity(256),
             csv_path: s.csv_path.to_path_buf(),
-            truth: s.truth,
-            records: Vec::new(),
-            acc: s.acc,
+            evaluation: s.evaluation,
             updates: 0,
             rejected: 0,
             samples: 0,
@@ -183,38 +133,14 @@ impl Sink {
         if let Some(a) = update {
             self.updates += 1;
             self.rejected += usize::from(a.rejected);
-            self.compare(nav, a)?;
+        }
+        if let Some(e) = self.evaluation.as_mut() {
+            e.sample(nav, update)?;
         }
         if self.interval == 0.0 || self.schedule.due(t, 1.0 / self.interval) {
             self.write(nav)?;
         }
         self.progress.at(t);
-        Ok(())
-    }
-
-    fn compare(&mut self, nav: &NavState, adaptation: Adaptation) -> Result<(), CliError> {
-        let Some(truth) = self.truth.as_mut() else {
-            return Ok(());
-        };
-        let Some(truth) = truth.at(nav.time)? else {
-            return Ok(());
-        };
-        let e = NavError::between(&self.earth, nav, &truth);
-        if !e.to_vector().iter().all(|v| v.is_finite()) {
-            return Err(CliError::Failed(format!(
-                "{} diverged at {} s of week: non-finite error against the truth",
-                self.label, nav.time
-            )));
-        }
-        let r = EpochRecord {
-            time: nav.time,
-            position: e.dr,
-            velocity: e.dv,
-            attitude: e.phi,
-            adaptation,
-        };
-        self.acc.add(&r);
-        self.records.push(r);
         Ok(())
     }
 
@@ -250,15 +176,28 @@ impl Sink {
                     .flush()
                     .map_err(|e| CliError::io(&self.nav_path, e))
             });
+        let evaluated = match self.evaluation.as_mut() {
+            Some(e) => e.finish(succeeded && flushed.is_ok()),
+            None => Ok(()),
+        };
+        let ok = succeeded && flushed.is_ok() && evaluated.is_ok();
         for path in [&self.nav_path, &self.csv_path] {
-            let partial = partial_path(path);
-            if succeeded && flushed.is_ok() {
-                std::fs::rename(&partial, path).map_err(|e| CliError::io(path, e))?;
-            } else {
-                // Best effort: the run's own error is the one to report.
-                let _ = std::fs::remove_file(&partial);
-            }
+            settle(path, ok)?;
         }
-        flushed
+        flushed.and(evaluated)
+    }
+}
+
+/// Puts the partial file of `path` in place when `ok` (a rename, which
+/// replaces a symbolic link there rather than writing through it),
+/// otherwise deletes it.
+pub(crate) fn settle(path: &Path, ok: bool) -> Result<(), CliError> {
+    let partial = partial_path(path);
+    if ok {
+        std::fs::rename(&partial, path).map_err(|e| CliError::io(path, e))
+    } else {
+        // Best effort: the run's own error is the one to report.
+        let _ = std::fs::remove_file(&partial);
+        Ok(())
     }
 }

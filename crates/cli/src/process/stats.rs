@@ -1,12 +1,15 @@
-//! RMS and maximum errors over the compared epochs.
+//! RMS and maximum errors over the compared epochs, summed so that they
+//! never overflow: a finite error always gives a finite RMS (≤ its maximum).
 
 use kestrel::nav::experiment::{EpochRecord, PositionAxes};
 use kestrel::nav::nalgebra::Vector3;
 
 /// The error statistics of a run against the truth.
 ///
-/// The sums are formed in the order and the axes of the experiment
-/// runner's summary, so equal records give bit-equal RMS values.
+/// The RMS values are sums of squares scaled by the largest value so far
+/// (as in LAPACK's `dnrm2`), so errors up to the largest double give a
+/// finite RMS; they agree with the plain `√(Σx²/n)` to a few units in the
+/// last place.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ErrorStats {
     /// Axes of the position values.
@@ -29,14 +32,58 @@ pub struct ErrorStats {
     pub max_position_3d: f64,
 }
 
+/// A sum of squares kept as `scale² · ssq` with `scale` the largest |x|
+/// so far, so it never overflows.
+///
+/// ```
+/// use kestrel_cli::process::SumOfSquares;
+/// let mut s = SumOfSquares::default();
+/// for x in [3.0, -4.0] { s.add(x); }
+/// assert!((s.rms(2) - 12.5f64.sqrt()).abs() < 1e-15);
+/// let mut huge = SumOfSquares::default();
+/// for x in [1e300, 1e300] { huge.add(x); }
+/// assert_eq!(huge.rms(2), 1e300);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SumOfSquares {
+    scale: f64,
+    ssq: f64,
+}
+
+impl SumOfSquares {
+    /// Adds `x²`.
+    pub fn add(&mut self, x: f64) {
+        let a = x.abs();
+        if a == 0.0 {
+            return;
+        }
+        if a > self.scale {
+            let r = self.scale / a;
+            self.ssq = 1.0 + self.ssq * r * r;
+            self.scale = a;
+        } else {
+            let r = a / self.scale;
+            self.ssq += r * r;
+        }
+    }
+
+    /// `√(Σx² / n)`.
+    pub fn rms(&self, n: usize) -> f64 {
+        if n == 0 {
+            return 0.0;
+        }
+        self.scale * (self.ssq / n as f64).sqrt()
+    }
+}
+
 /// Sums of squares while the run goes.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Accumulator {
     axes: PositionAxes,
     n: usize,
-    pos: Vector3<f64>,
-    vel: Vector3<f64>,
-    att: Vector3<f64>,
+    pos: [SumOfSquares; 3],
+    vel: [SumOfSquares; 3],
+    att: [SumOfSquares; 3],
     max_pos: Vector3<f64>,
     max_vel: Vector3<f64>,
     max_att: Vector3<f64>,
@@ -48,9 +95,9 @@ impl Accumulator {
         Self {
             axes,
             n: 0,
-            pos: Vector3::zeros(),
-            vel: Vector3::zeros(),
-            att: Vector3::zeros(),
+            pos: Default::default(),
+            vel: Default::default(),
+            att: Default::default(),
             max_pos: Vector3::zeros(),
             max_vel: Vector3::zeros(),
             max_att: Vector3::zeros(),
@@ -58,22 +105,33 @@ impl Accumulator {
         }
     }
 
+    /// Epochs added.
+    pub(crate) fn epochs(&self) -> usize {
+        self.n
+    }
+
     pub(crate) fn add(&mut self, r: &EpochRecord) {
         let p = self.axes.from_ned(&r.position);
         self.n += 1;
         self.max_3d = self.max_3d.max(r.position.norm());
-        self.pos += p.component_mul(&p);
-        self.vel += r.velocity.component_mul(&r.velocity);
-        self.att += r.attitude.component_mul(&r.attitude);
+        for i in 0..3 {
+            self.pos[i].add(p[i]);
+            self.vel[i].add(r.velocity[i]);
+            self.att[i].add(r.attitude[i]);
+        }
         self.max_pos = self.max_pos.sup(&p.abs());
         self.max_vel = self.max_vel.sup(&r.velocity.abs());
         self.max_att = self.max_att.sup(&r.attitude.abs());
     }
 
-    pub(crate) fn finish(&self) -> ErrorStats {
-        let n = self.n.max(1) as f64;
-        let rms = |s: &Vector3<f64>| (s / n).map(f64::sqrt);
-        ErrorStats {
+    /// The statistics, `None` over no epoch (never a 0 that looks like a
+    /// result).
+    pub(crate) fn finish(&self) -> Option<ErrorStats> {
+        if self.n == 0 {
+            return None;
+        }
+        let rms = |s: &[SumOfSquares; 3]| Vector3::from_fn(|i, _| s[i].rms(self.n));
+        Some(ErrorStats {
             axes: self.axes,
             epochs: self.n,
             rms_position: rms(&self.pos),
@@ -83,6 +141,6 @@ impl Accumulator {
             max_velocity: self.max_vel,
             max_attitude: self.max_att,
             max_position_3d: self.max_3d,
-        }
+        })
     }
 }
