@@ -349,7 +349,12 @@ fn a_divergence_is_reported_with_its_time() {
     let e = process(&args(&dir, false)).unwrap_err().to_string();
     assert_eq!(
         e,
-        "KF diverged at 0.505 s of week: non-finite navigation solution"
+        format!(
+            "KF diverged at 0.505 s of week after IMU line {}:{}: the navigation solution is \
+             no longer finite",
+            dir.join("imu.txt").display(),
+            k + 1
+        )
     );
 }
 

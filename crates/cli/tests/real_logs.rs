@@ -475,3 +475,46 @@ fn drift_is_reported_per_outage_and_gap_and_never_over_nothing() {
     // The printed statistics are numbers, never NaN or inf.
     assert!(!s.contains("NaN") && !s.contains("inf"), "{s}");
 }
+
+#[test]
+fn every_gnss_line_is_read_and_checked_even_after_the_imu_ends() {
+    let dir = sim(8, 5.0);
+    let gnss = std::fs::read_to_string(dir.join("gnss.txt")).unwrap();
+    let last = gnss.lines().last().unwrap().to_owned();
+    let fix_at = |t: f64| {
+        let mut f: Vec<&str> = last.split(' ').collect();
+        let t = t.to_string();
+        f[0] = &t;
+        f.join(" ")
+    };
+    // Good fixes after the run: read, counted, reported.
+    let extra: String = (6..9).map(|t| fix_at(f64::from(t)) + "\n").collect();
+    std::fs::write(dir.join("gnss.txt"), format!("{gnss}{extra}")).unwrap();
+    let r = process(&args(&dir, "after")).unwrap();
+    assert_eq!((r.fixes_used, r.fixes_after_end), (5, 3));
+    assert!(summary(&r).contains(
+        "warning: 3 GNSS fixes after the last IMU sample were read and checked but not used\n"
+    ));
+    // A far-future fix followed by the rest of the file: the time that
+    // goes back is found, not skipped by waiting for the far fix.
+    let text = format!("{gnss}{}\n{}\n", fix_at(9e4), fix_at(7.0));
+    std::fs::write(dir.join("gnss.txt"), &text).unwrap();
+    let lines = text.lines().count();
+    let e = process(&args(&dir, "far")).unwrap_err().to_string();
+    assert!(
+        e.starts_with(&format!(
+            "{}:{lines}:1: time does not increase: 7 s after 90000 s",
+            dir.join("gnss.txt").display()
+        )),
+        "{e}"
+    );
+    // A garbage line after the run is an error naming it.
+    std::fs::write(dir.join("gnss.txt"), format!("{gnss}{extra}x y\n")).unwrap();
+    let e = process(&args(&dir, "garbage")).unwrap_err().to_string();
+    let n = gnss.lines().count() + 4;
+    assert!(
+        e.starts_with(&format!("{}:{n}:", dir.join("gnss.txt").display())),
+        "{e}"
+    );
+    assert!(!dir.join("garbage/result.nav").exists());
+}

@@ -68,6 +68,18 @@ impl<R: BufRead> GnssReader<R> {
     }
 }
 
+impl<R: BufRead> GnssReader<R> {
+    /// The file's name.
+    pub fn path(&self) -> &Path {
+        self.stream.path()
+    }
+
+    /// The line of the last fix read (`None` before the first).
+    pub fn last_line(&self) -> Option<usize> {
+        self.stream.last_line()
+    }
+}
+
 impl<R: BufRead> Iterator for GnssReader<R> {
     type Item = Result<GnssFix, InputError>;
 

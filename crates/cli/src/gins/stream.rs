@@ -34,6 +34,11 @@ impl<R: BufRead> Stream<R> {
         }
     }
 
+    /// The line of the last record read without error.
+    pub(crate) fn last_line(&self) -> Option<usize> {
+        self.previous.map(|(_, line)| line)
+    }
+
     /// The file's name for errors.
     pub(crate) fn path(&self) -> &Path {
         self.lines.path()

@@ -93,7 +93,6 @@ impl Thinned {
 /// What the comparison found.
 pub(crate) struct Evaluation {
     earth: Ellipsoid,
-    label: &'static str,
     truth: Truth,
     previous: Option<NavState>,
     csv: EpochCsvWriter<BufWriter<File>>,
@@ -114,7 +113,6 @@ pub(crate) struct Evaluation {
 /// Where a comparison writes and what it is told.
 pub(crate) struct EvaluationSetup {
     pub earth: Ellipsoid,
-    pub label: &'static str,
     pub axes: PositionAxes,
     pub truth: Truth,
     pub csv_path: PathBuf,
@@ -129,7 +127,6 @@ impl Evaluation {
                 .map_err(|e| CliError::io(&s.csv_path, e))?;
         Ok(Self {
             earth: s.earth,
-            label: s.label,
             truth: s.truth,
             previous: None,
             csv,
@@ -180,8 +177,8 @@ impl Evaluation {
         let e = NavError::between(&self.earth, nav, truth);
         if !e.to_vector().iter().all(|v| v.is_finite()) {
             return Err(CliError::Failed(format!(
-                "{} diverged at {} s of week: its error against the truth is not a finite number",
-                self.label, truth.time
+                "its error against the truth at {} s of week is not a finite number",
+                truth.time
             )));
         }
         let r = EpochRecord {

@@ -12,6 +12,7 @@
 
 pub mod config;
 mod dispatch;
+mod divergence;
 mod drift;
 mod evaluation;
 pub(crate) mod filter_params;
@@ -43,7 +44,7 @@ pub use stats::{ErrorStats, SumOfSquares};
 use dispatch::{dispatch, GnssLayout};
 use drift::DriftTable;
 use evaluation::{Evaluation, EvaluationSetup, Truth};
-use pipeline::Job;
+use pipeline::{GnssSource, Job};
 use sink::{Sink, SinkSetup};
 
 /// Arguments of `kestrel process`.
@@ -96,6 +97,10 @@ pub struct ProcessReport {
     pub fixes_used: usize,
     /// GNSS fixes skipped in outage windows.
     pub fixes_in_outage: usize,
+    /// GNSS fixes at or before the initial time (read, checked, unused).
+    pub fixes_before_start: usize,
+    /// GNSS fixes after the last IMU sample (read, checked, unused).
+    pub fixes_after_end: usize,
     /// Aiding updates (GNSS and odometer).
     pub updates: usize,
     /// Updates rejected by an adapter.
@@ -157,17 +162,11 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
     let (gnss, layout) = match &args.gnss {
         None => (None, GnssLayout::None),
         Some(p) => {
-            let mut g = GnssReader::open(p)?.peekable();
-            let layout = match g.peek() {
+            let mut g = GnssSource::open(GnssReader::open(p)?)?;
+            let layout = match g.peek()? {
                 None => GnssLayout::None,
-                Some(Err(_)) => {
-                    return Err(g.next().and_then(Result::err).map_or_else(
-                        || CliError::Failed("unreadable GNSS file".into()),
-                        CliError::from,
-                    ))
-                }
-                Some(Ok(f)) if f.vel.is_some() => GnssLayout::PositionVelocity,
-                Some(Ok(_)) => GnssLayout::Position,
+                Some(f) if f.vel.is_some() => GnssLayout::PositionVelocity,
+                Some(_) => GnssLayout::Position,
             };
             (Some(g), layout)
         }
@@ -180,7 +179,6 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
         None => None,
         Some(truth) => Some(Evaluation::new(EvaluationSetup {
             earth: settings.earth,
-            label: settings.kind.label(),
             axes: settings.axes,
             truth,
             csv_path: args.out.join("errors.csv"),
@@ -217,6 +215,9 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
         sink,
         fixes_used: 0,
         fixes_in_outage: 0,
+        fixes_before_start: 0,
+        fixes_after_end: 0,
+        error_model: settings.error_model,
         timing_rule: settings.timing,
         timing: timing::TimingReport::default(),
         pending: std::collections::VecDeque::new(),
@@ -252,6 +253,8 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
         end_time: job.sink.end_time,
         fixes_used: job.fixes_used,
         fixes_in_outage: job.fixes_in_outage,
+        fixes_before_start: job.fixes_before_start,
+        fixes_after_end: job.fixes_after_end,
         updates: job.sink.updates,
         rejected: job.sink.rejected,
         errors,
@@ -458,6 +461,18 @@ pub fn summary(r: &ProcessReport) -> String {
         r.filter, r.samples, r.end_time, r.fixes_used, r.fixes_in_outage, r.updates, r.rejected
     );
     s += &timing_summary(&r.timing);
+    if r.fixes_before_start > 0 {
+        s += &format!(
+            "warning: {} GNSS fixes at or before the initial time were not used\n",
+            r.fixes_before_start
+        );
+    }
+    if r.fixes_after_end > 0 {
+        s += &format!(
+            "warning: {} GNSS fixes after the last IMU sample were read and checked but not used\n",
+            r.fixes_after_end
+        );
+    }
     if let Some(e) = &r.errors {
         s += &error_block(
             &format!(

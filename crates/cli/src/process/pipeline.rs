@@ -4,7 +4,6 @@
 use std::collections::VecDeque;
 use std::fs::File;
 use std::io::BufReader;
-use std::iter::Peekable;
 
 use kestrel::adapter::PriorAdapter;
 use kestrel::form::{Form, PredictForm};
@@ -13,6 +12,7 @@ use kestrel::nav::experiment::Adaptation;
 use kestrel::nav::measurement::{GnssFix, OdometerReading};
 use kestrel::FilterError;
 
+use super::divergence::{describe, Step};
 use super::outage::Outage;
 use super::schedule::Schedule;
 use super::sink::Sink;
@@ -23,20 +23,70 @@ use crate::{CliError, InputError};
 /// The inputs of a run and its outputs.
 pub(crate) struct Job {
     pub imu: ImuReader<BufReader<File>>,
-    pub gnss: Option<Peekable<GnssReader<BufReader<File>>>>,
+    pub gnss: Option<GnssSource>,
     /// Odometer update rate (Hz) when the 8th IMU column is used.
     pub odometer_rate: Option<f64>,
     pub outages: Vec<Outage>,
     pub start: f64,
     pub sink: Sink,
-    /// GNSS fixes used, and skipped in outages.
+    /// GNSS fixes used, skipped in outages, before the initial time and
+    /// after the last IMU sample (read and checked, not used).
     pub fixes_used: usize,
     pub fixes_in_outage: usize,
+    pub fixes_before_start: usize,
+    pub fixes_after_end: usize,
+    /// The error-state model (to name state components in errors).
+    pub error_model: kestrel::nav::scenario::ErrorModelKind,
     /// The treatment of IMU gaps, and what was seen.
     pub timing_rule: TimingRule,
     pub timing: TimingReport,
     /// IMU records read ahead (to estimate the nominal interval).
     pub pending: VecDeque<ImuRecord>,
+}
+
+/// The GNSS file read one fix ahead, each fix with its line.
+pub(crate) struct GnssSource {
+    reader: GnssReader<BufReader<File>>,
+    ahead: Option<(GnssFix, usize)>,
+}
+
+impl GnssSource {
+    /// The GNSS file at its first fix (an error in the lines before it is
+    /// returned here).
+    pub(crate) fn open(reader: GnssReader<BufReader<File>>) -> Result<Self, InputError> {
+        let mut s = Self {
+            reader,
+            ahead: None,
+        };
+        s.fill()?;
+        Ok(s)
+    }
+
+    fn fill(&mut self) -> Result<(), InputError> {
+        if self.ahead.is_none() {
+            if let Some(fix) = self.reader.next().transpose()? {
+                self.ahead = Some((fix, self.reader.last_line().unwrap_or(0)));
+            }
+        }
+        Ok(())
+    }
+
+    /// The next fix, not consumed.
+    pub(crate) fn peek(&mut self) -> Result<Option<&GnssFix>, InputError> {
+        self.fill()?;
+        Ok(self.ahead.as_ref().map(|(f, _)| f))
+    }
+
+    /// The next fix and its line.
+    fn take(&mut self) -> Result<Option<(GnssFix, usize)>, InputError> {
+        self.fill()?;
+        Ok(self.ahead.take())
+    }
+
+    /// The file's name.
+    pub(crate) fn path(&self) -> &std::path::Path {
+        self.reader.path()
+    }
 }
 
 impl Job {
@@ -78,30 +128,29 @@ impl Job {
     }
 
     /// The next GNSS fix to use at the sample at `t` (the next sample at
-    /// `next`): fixes at `t ≤ time < next` belong to this sample (the
-    /// engine extrapolates to them); fixes before the start are dropped.
-    fn gnss_due(&mut self, t: f64, next: Option<f64>) -> Result<Option<GnssFix>, InputError> {
+    /// `next`), with its line: fixes at `t ≤ time < next` belong to this
+    /// sample (the engine extrapolates to them); fixes before the start are
+    /// counted and dropped.
+    fn gnss_due(
+        &mut self,
+        t: f64,
+        next: Option<f64>,
+    ) -> Result<Option<(GnssFix, usize)>, InputError> {
         let Some(gnss) = self.gnss.as_mut() else {
             return Ok(None);
         };
         loop {
-            let time = match gnss.peek() {
-                None => return Ok(None),
-                Some(Err(_)) => {
-                    return match gnss.next() {
-                        Some(Err(e)) => Err(e),
-                        _ => Ok(None),
-                    }
-                }
-                Some(Ok(f)) => f.time,
+            let Some(time) = gnss.peek()?.map(|f| f.time) else {
+                return Ok(None);
             };
             if time > self.start && next.map_or(time > t, |n| time >= n) {
                 return Ok(None);
             }
-            let Some(Ok(fix)) = gnss.next() else {
+            let Some((fix, line)) = gnss.take()? else {
                 return Ok(None);
             };
             if fix.time <= self.start {
+                self.fixes_before_start += 1;
                 continue;
             }
             if self.outages.iter().any(|o| o.contains(fix.time)) {
@@ -112,8 +161,19 @@ impl Job {
             if let Some(e) = self.sink.evaluation.as_mut() {
                 e.drift.fix(fix.time);
             }
-            return Ok(Some(fix));
+            return Ok(Some((fix, line)));
         }
+    }
+
+    /// Reads and checks the GNSS lines after the last IMU sample, counting
+    /// their fixes (none is used; a bad line is still an error).
+    fn drain_gnss(&mut self) -> Result<(), InputError> {
+        if let Some(gnss) = self.gnss.as_mut() {
+            while gnss.take()?.is_some() {
+                self.fixes_after_end += 1;
+            }
+        }
+        Ok(())
     }
 }
 
@@ -153,7 +213,7 @@ where
     }
     let outcome = loop {
         let Some(sample) = current else {
-            break Ok(());
+            break job.drain_gnss().map_err(CliError::from);
         };
         match step(
             job,
@@ -203,21 +263,48 @@ where
 {
     let following = job.next_imu()?;
     let t = sample.time;
-    let diverged = |error: FilterError| {
-        CliError::Failed(format!("{label} diverged at {t} s of week: {error}"))
+    let model = job.error_model;
+    let imu_path = job.imu.path().to_path_buf();
+    let imu_line = format!("{}:{}", imu_path.display(), sample.line);
+    let diverged = |error: FilterError, step: Step, input: &str| {
+        let doing = match step {
+            Step::Imu => "propagating",
+            Step::Gnss(_) => "in the GNSS update",
+            Step::Odometer => "in the odometer update",
+        };
+        CliError::Failed(format!(
+            "{label} diverged at {t} s of week {doing} ({input}): {}",
+            describe(&error, model, step)
+        ))
     };
     let increment = timing.increment(sample, previous.0, previous.1)?;
-    engine.imu(&increment).map_err(diverged)?;
+    engine
+        .imu(&increment)
+        .map_err(|e| diverged(e, Step::Imu, &format!("IMU line {imu_line}")))?;
     let mut update = None;
-    while let Some(fix) = job.gnss_due(t, following.as_ref().map(|f| f.time))? {
-        update = Some(gnss(engine, &fix).map_err(diverged)?);
+    while let Some((fix, line)) = job.gnss_due(t, following.as_ref().map(|f| f.time))? {
+        let rows = if fix.vel.is_some() { 6 } else { 3 };
+        let input = match job.gnss.as_ref() {
+            Some(g) => format!("GNSS line {}:{line}", g.path().display()),
+            None => format!("GNSS line {line}"),
+        };
+        update = Some(gnss(engine, &fix).map_err(|e| diverged(e, Step::Gnss(rows), &input))?);
     }
     if let (Some(rate), Some(speed)) = (job.odometer_rate, sample.odometer) {
         if schedule.due(t, rate) {
             let reading = OdometerReading::new(t, speed);
-            update = Some(odometer(engine, &reading).map_err(diverged)?);
+            let input = format!("odometer speed of IMU line {imu_line}");
+            update =
+                Some(odometer(engine, &reading).map_err(|e| diverged(e, Step::Odometer, &input))?);
         }
     }
-    job.sink.sample(engine.solution(), update)?;
+    job.sink
+        .sample(engine.solution(), update)
+        .map_err(|e| match e {
+            CliError::Failed(m) => CliError::Failed(format!(
+                "{label} diverged at {t} s of week after IMU line {imu_line}: {m}"
+            )),
+            other => other,
+        })?;
     Ok(following)
 }

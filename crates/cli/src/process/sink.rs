@@ -123,10 +123,9 @@ impl Sink {
             && nav.vel.iter().all(|v| v.is_finite())
             && nav.att.coords.iter().all(|v| v.is_finite());
         if !finite {
-            return Err(CliError::Failed(format!(
-                "{} diverged at {t} s of week: non-finite navigation solution",
-                self.label
-            )));
+            return Err(CliError::Failed(
+                "the navigation solution is no longer finite".to_owned(),
+            ));
         }
         self.samples += 1;
         self.end_time = t;

@@ -68,7 +68,7 @@ pub enum RunError {
 impl core::fmt::Display for RunError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
-            Self::Trajectory(e) => write!(f, "invalid trajectory: {e:?}"),
+            Self::Trajectory(e) => write!(f, "invalid trajectory: {e}"),
             Self::Unsupported { filter, reason } => {
                 write!(f, "{filter} is not supported: {reason}")
             }
@@ -76,18 +76,18 @@ impl core::fmt::Display for RunError {
                 write!(f, "{filter} does not fit the scenario: {reason}")
             }
             Self::InvalidParameter { filter, error } => {
-                write!(f, "{filter}: invalid parameter: {error:?}")
+                write!(f, "{filter}: invalid parameter: {error}")
             }
             Self::Filter {
                 filter,
                 time,
                 error,
-            } => write!(f, "{filter} diverged at {time} s: {error:?}"),
+            } => write!(f, "{filter} diverged at {time} s: {error}"),
             Self::Fusion {
                 filter,
                 time,
                 error,
-            } => write!(f, "{filter} diverged at {time} s: {error:?}"),
+            } => write!(f, "{filter} diverged at {time} s: {error}"),
             Self::NonFinite { filter, time } => {
                 write!(
                     f,
