@@ -518,3 +518,31 @@ fn every_gnss_line_is_read_and_checked_even_after_the_imu_ends() {
     );
     assert!(!dir.join("garbage/result.nav").exists());
 }
+
+#[test]
+fn simulated_sizes_are_bounded_before_work_starts() {
+    let dir = std::env::temp_dir().join(format!("kestrel-size-{}", std::process::id()));
+    let try_sim = |duration: Option<f64>, imu_rate: Option<f64>| {
+        simulate(&SimulateArgs {
+            scenario: "002".into(),
+            seed: Some(1),
+            duration,
+            imu_rate,
+            out: dir.clone(),
+            force: true,
+        })
+        .unwrap_err()
+        .to_string()
+    };
+    let start = std::time::Instant::now();
+    assert_eq!(
+        try_sim(None, Some(1e9)),
+        "scenario 002: 3600 s at 1000000000 Hz would be 3600000000000 IMU samples, more than \
+         the limit of 20000000 (about 28 h at 200 Hz): shorten the duration or lower the IMU rate"
+    );
+    // A duration beyond the scenario's is cut to the scenario (1 h), so a
+    // long one only fails with a rate that makes it too long.
+    assert!(try_sim(Some(1e9), Some(1e4)).contains("would be 36000000 IMU samples"));
+    assert!(start.elapsed().as_secs() < 5, "refused before any work");
+    assert!(!dir.join("imu.txt").exists());
+}

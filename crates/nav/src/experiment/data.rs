@@ -59,6 +59,20 @@ pub struct Simulation {
     odometer: Option<OdometerSensor>,
 }
 
+/// The most IMU samples a simulated run may have (duration × IMU rate):
+/// about 28 hours at 200 Hz. Longer runs are refused before any work, so a
+/// mistyped duration or rate cannot run or write for days.
+///
+/// ```
+/// use kestrel_nav::experiment::{RunError, RunOptions, Simulation, MAX_IMU_SAMPLES};
+/// let s = kestrel_nav::scenario::by_name("002").unwrap();
+/// let opts = RunOptions::default().with_imu_rate(1e9);
+/// let e = Simulation::new(&s, 1, &opts).unwrap_err();
+/// assert!(matches!(e, RunError::TooLong { .. }));
+/// assert!(e.to_string().contains(&format!("more than the limit of {MAX_IMU_SAMPLES}")));
+/// ```
+pub const MAX_IMU_SAMPLES: u64 = 20_000_000;
+
 impl Simulation {
     /// The simulation of `scenario` with noise from `seed`, limited to
     /// `options.duration` and at `options.imu_rate` if given.
@@ -72,6 +86,13 @@ impl Simulation {
             .duration
             .map_or(traj.duration(), |d| d.min(traj.duration()));
         let rate = options.imu_rate.unwrap_or(scenario.imu_rate);
+        // `!(≤)` also refuses NaN.
+        if !(end * rate <= MAX_IMU_SAMPLES as f64) {
+            return Err(RunError::TooLong {
+                duration: end,
+                rate,
+            });
+        }
         Ok(Self {
             stream: traj.into_stream(rate)?,
             start,

@@ -56,6 +56,14 @@ pub enum RunError {
         /// The fusion error.
         error: FusionError,
     },
+    /// The run would be longer than [`MAX_IMU_SAMPLES`](super::MAX_IMU_SAMPLES)
+    /// IMU samples (duration × IMU rate): refused before any work.
+    TooLong {
+        /// The duration, s.
+        duration: f64,
+        /// The IMU rate, Hz.
+        rate: f64,
+    },
     /// The navigation solution became non-finite at `time`.
     NonFinite {
         /// The filter's label.
@@ -88,6 +96,13 @@ impl core::fmt::Display for RunError {
                 time,
                 error,
             } => write!(f, "{filter} diverged at {time} s: {error}"),
+            Self::TooLong { duration, rate } => write!(
+                f,
+                "{duration} s at {rate} Hz would be {} IMU samples, more than the limit of {} \
+                 (about 28 h at 200 Hz): shorten the duration or lower the IMU rate",
+                duration * rate,
+                super::MAX_IMU_SAMPLES
+            ),
             Self::NonFinite { filter, time } => {
                 write!(
                     f,

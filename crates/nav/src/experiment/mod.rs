@@ -63,7 +63,7 @@ mod run;
 mod summary;
 
 pub use aiding::{AidedEngine, GnssAiding, GnssNoise, OdometerAiding, OdometerProcessing};
-pub use data::{SensorSample, Simulation};
+pub use data::{SensorSample, Simulation, MAX_IMU_SAMPLES};
 pub use dispatch::{build_filter, closed_loop_ekf, BuildError, FilterLoop};
 pub use error::RunError;
 pub use options::{PositionAxes, RunOptions};
