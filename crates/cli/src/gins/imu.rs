@@ -4,10 +4,11 @@ use std::fs::File;
 use std::io::{BufRead, BufReader, BufWriter, Write};
 use std::path::Path;
 
-use kestrel::nav::nalgebra::Vector3;
+use kestrel::nav::nalgebra::{Matrix3, Vector3};
 use kestrel::nav::ImuIncrement;
 
-use super::line::{open, Lines};
+use super::imu_format::{ImuFormat, Measures, Sample, TimeBase};
+use super::line::{open, Fields, Lines};
 use super::stream::Stream;
 use crate::{CliError, InputError};
 
@@ -73,6 +74,20 @@ impl ImuRecord {
 #[derive(Debug)]
 pub struct ImuReader<R> {
     stream: Stream<R>,
+    /// A configured layout (`None`: the GINS format).
+    configured: Option<Configured>,
+}
+
+/// What a reader of a configured layout keeps.
+#[derive(Debug)]
+struct Configured {
+    format: ImuFormat,
+    to_vehicle: Matrix3<f64>,
+    week0: u32,
+    /// The time before the first sample (the initial time), s.
+    start: f64,
+    /// The previous sample's time and rates (rates only).
+    previous: Option<(f64, Vector3<f64>, Vector3<f64>)>,
 }
 
 impl ImuReader<BufReader<File>> {
@@ -83,6 +98,20 @@ impl ImuReader<BufReader<File>> {
     pub fn open(path: &Path) -> Result<Self, InputError> {
         Ok(Self::new(open(path)?, path))
     }
+
+    /// Opens the IMU file at `path` laid out as `format` (see
+    /// [`ImuReader::with_format`]).
+    ///
+    /// # Errors
+    /// [`InputError`] naming the file if it cannot be opened.
+    pub fn open_with_format(
+        path: &Path,
+        format: &ImuFormat,
+        week0: u32,
+        start: f64,
+    ) -> Result<Self, InputError> {
+        Ok(Self::with_format(open(path)?, path, format, week0, start))
+    }
 }
 
 impl<R: BufRead> ImuReader<R> {
@@ -92,7 +121,35 @@ impl<R: BufRead> ImuReader<R> {
     pub fn new(reader: R, path: &Path) -> Self {
         Self {
             stream: Stream::new(Lines::new(reader, path, NAMES, &[7, 8], LAYOUT)),
+            configured: None,
         }
+    }
+
+    /// Reads IMU lines laid out as `format` says; times become seconds of
+    /// GPS week `week0` (continuing past its end); rates are integrated
+    /// from `start` (the initial time) on.
+    pub fn with_format(reader: R, path: &Path, format: &ImuFormat, week0: u32, start: f64) -> Self {
+        if format.is_gins() {
+            return Self::new(reader, path);
+        }
+        Self {
+            stream: Stream::new(Lines::selected(reader, path, format.selection())),
+            configured: Some(Configured {
+                format: format.clone(),
+                to_vehicle: format.to_vehicle(),
+                week0,
+                start,
+                previous: None,
+            }),
+        }
+    }
+
+    /// Whether the records hold increments already integrated over their
+    /// actual intervals (rates), so a dropout needs no rescaling.
+    pub fn integrated(&self) -> bool {
+        self.configured
+            .as_ref()
+            .is_some_and(|c| c.format.measures == Measures::Rates)
     }
 
     /// The file's name.
@@ -106,6 +163,9 @@ impl<R: BufRead> Iterator for ImuReader<R> {
 
     /// The next record; after an error the reader ends.
     fn next(&mut self) -> Option<Self::Item> {
+        if let Some(c) = self.configured.as_mut() {
+            return self.stream.next(|s, f| configured_record(c, s, f));
+        }
         self.stream.next(|s, f| {
             let v = &f.values;
             let time = s.advance_seconds(f)?;
@@ -119,6 +179,57 @@ impl<R: BufRead> Iterator for ImuReader<R> {
             })
         })
     }
+}
+
+/// The record of a line of a configured layout.
+fn configured_record<R: BufRead>(
+    c: &mut Configured,
+    s: &mut Stream<R>,
+    f: &Fields,
+) -> Result<ImuRecord, InputError> {
+    let v = &f.values[..f.count];
+    let time = match c.format.time_base {
+        TimeBase::SecondsOfWeek => s.advance_seconds(f)?,
+        _ => {
+            let week = c.format.week.map(|_| v[1]);
+            if let Some(w) = week.filter(|w| *w < 0.0 || w.fract() != 0.0) {
+                return Err(s.at(f, 2, format!("expected a whole GPS week, found {w}")));
+            }
+            let t = c.format.time_of(v[0], week, c.week0);
+            s.advance(t, f).map_err(|(t0, l0)| {
+                s.at(
+                    f,
+                    1,
+                    format!("time does not increase: not after line {l0} ({t0} s of the week)"),
+                )
+            })?;
+            t
+        }
+    };
+    let sample = Sample::from_values(&c.format, v, &c.to_vehicle);
+    if c.format.odometer.is_some() {
+        s.speeds(f, &[f.count - 1])?;
+    }
+    let (dtheta, dvel) = match c.format.measures {
+        Measures::Increments => (sample.gyro, sample.accel),
+        Measures::Rates => {
+            let (gyro, accel) = match c.previous {
+                Some((_, g, a)) => ((g + sample.gyro) * 0.5, (a + sample.accel) * 0.5),
+                None => (sample.gyro, sample.accel),
+            };
+            let from = c.previous.map_or(c.start, |p| p.0);
+            c.previous = Some((time, sample.gyro, sample.accel));
+            let dt = (time - from).max(0.0);
+            (gyro * dt, accel * dt)
+        }
+    };
+    Ok(ImuRecord {
+        time,
+        dtheta,
+        dvel,
+        odometer: sample.odometer,
+        line: f.line,
+    })
 }
 
 /// Writes IMU lines.

@@ -37,9 +37,30 @@ impl Fields {
     }
 }
 
+/// What separates the columns of a line.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Delimiter {
+    /// Any run of spaces and tabs (the GINS formats).
+    #[default]
+    Whitespace,
+    /// One character (`,`, `;`, a tab); spaces around a field are ignored.
+    Char(char),
+}
+
+/// How a configured file is laid out: what separates columns, how many
+/// header lines to skip, and which columns (0-based) to read, with their
+/// names for errors; other columns may hold anything.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Selection {
+    pub delimiter: Delimiter,
+    pub header_lines: usize,
+    pub columns: Vec<(usize, String)>,
+}
+
 /// Data lines of a text file, parsed one at a time.
 #[derive(Debug)]
 pub(crate) struct Lines<R> {
+    selection: Option<Selection>,
     reader: R,
     path: PathBuf,
     bytes: Vec<u8>,
@@ -71,6 +92,7 @@ impl<R: BufRead> Lines<R> {
         layout: &'static str,
     ) -> Self {
         Self {
+            selection: None,
             reader,
             path: path.to_path_buf(),
             bytes: Vec::with_capacity(256),
@@ -81,6 +103,14 @@ impl<R: BufRead> Lines<R> {
             counts,
             layout,
         }
+    }
+
+    /// Lines of `reader` read by `selection`: only its columns are parsed
+    /// (as numbers, in the selection's order), after its header lines.
+    pub(crate) fn selected(reader: R, path: &Path, selection: Selection) -> Self {
+        let mut lines = Self::new(reader, path, &[], &[], "");
+        lines.selection = Some(selection);
+        lines
     }
 
     /// The file's name for errors.
@@ -103,8 +133,12 @@ impl<R: BufRead> Lines<R> {
                     return Some(Err(e));
                 }
             }
-            if self.buf.bytes().all(|b| b.is_ascii_whitespace()) {
+            let header = self.selection.as_ref().map_or(0, |s| s.header_lines);
+            if self.line <= header || self.buf.bytes().all(|b| b.is_ascii_whitespace()) {
                 continue;
+            }
+            if let Some(s) = &self.selection {
+                return Some(self.parse_selected(s, self.line));
             }
             return Some(self.parse(self.line));
         }
@@ -170,6 +204,58 @@ impl<R: BufRead> Lines<R> {
             }
         }
         Ok(true)
+    }
+
+    /// The selected columns of the current line.
+    fn parse_selected(&self, s: &Selection, line: usize) -> Result<Fields, InputError> {
+        let text = self.buf.trim_end_matches(['\r', '\n']);
+        let mut tokens: Vec<&str> = match s.delimiter {
+            Delimiter::Whitespace => text.split_ascii_whitespace().collect(),
+            Delimiter::Char(c) => text.split(c).map(str::trim).collect(),
+        };
+        if s.delimiter != Delimiter::Whitespace && tokens.last() == Some(&"") {
+            tokens.pop();
+        }
+        let mut values = [0.0; MAX_FIELDS];
+        for (k, (column, name)) in s.columns.iter().enumerate() {
+            let Some(token) = tokens.get(*column) else {
+                return Err(InputError::at(
+                    &self.path,
+                    line,
+                    tokens.len() + 1,
+                    format!(
+                        "expected at least {} columns ({name} is column {}), found {}",
+                        column + 1,
+                        column + 1,
+                        tokens.len()
+                    ),
+                ));
+            };
+            values[k] = match token.parse::<f64>() {
+                Ok(v) if v.is_finite() => v,
+                Ok(_) => {
+                    return Err(InputError::at(
+                        &self.path,
+                        line,
+                        column + 1,
+                        format!("expected a finite number ({name}), found `{token}`"),
+                    ))
+                }
+                Err(_) => {
+                    return Err(InputError::at(
+                        &self.path,
+                        line,
+                        column + 1,
+                        format!("expected a number ({name}), found `{token}`"),
+                    ))
+                }
+            };
+        }
+        Ok(Fields {
+            line,
+            count: s.columns.len(),
+            values,
+        })
     }
 
     fn parse(&self, line: usize) -> Result<Fields, InputError> {

@@ -27,6 +27,7 @@
 mod angle;
 mod gnss;
 mod imu;
+pub mod imu_format;
 mod line;
 mod nav;
 pub mod physical;
@@ -36,7 +37,7 @@ mod tail;
 pub use angle::{degrees_exact, degrees_to_radians, invert_exact};
 pub use gnss::{GnssReader, GnssWriter};
 pub use imu::{ImuReader, ImuRecord, ImuWriter};
-pub use line::Fields;
+pub use line::{Delimiter, Fields};
 pub(crate) use nav::WEEK_SECONDS;
 pub use nav::{nav_line, NavReader, NavRecord, NavWriter};
 pub use tail::last_time;

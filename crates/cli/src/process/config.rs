@@ -16,8 +16,11 @@ use serde::{Deserialize, Deserializer};
 
 use super::timing::{LongGap, TimingRule};
 use super::units::{deg, deg_per_h, deg_per_sqrt_h, m_s_per_sqrt_h, ug};
+use crate::gins::imu_format::{signed_axis, ImuFormat, Measures, TimeBase};
 use crate::gins::physical;
+use crate::gins::Delimiter;
 use crate::{CliError, InputError};
+use std::f64::consts::PI;
 
 type V3 = Exact<3>;
 
@@ -73,6 +76,35 @@ struct File {
     odometer: Option<Odometer>,
     #[serde(default)]
     output: Output,
+    imu_file: Option<ImuFile>,
+}
+
+/// `[imu_file]`: how the IMU file is laid out (default: the GINS format).
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ImuFile {
+    delimiter: Option<String>,
+    header_lines: Option<usize>,
+    columns: Option<ImuColumns>,
+    time: Option<String>,
+    leap_seconds: Option<f64>,
+    measures: Option<String>,
+    gyro_unit: Option<String>,
+    accel_unit: Option<String>,
+    g: Option<f64>,
+    axes: Option<[String; 3]>,
+    mounting: Option<Exact<3>>,
+}
+
+/// `[imu_file.columns]`, 1-based.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ImuColumns {
+    time: usize,
+    week: Option<usize>,
+    gyro: [usize; 3],
+    accel: [usize; 3],
+    odometer: Option<usize>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -221,6 +253,8 @@ pub struct Settings {
     pub axes: PositionAxes,
     /// The treatment of gaps in the IMU data.
     pub timing: TimingRule,
+    /// How the IMU file is laid out.
+    pub imu_format: ImuFormat,
 }
 
 /// Reads and validates the configuration at `path`.
@@ -545,7 +579,228 @@ impl Check<'_> {
                 .non_negative("output.interval", f.output.interval.unwrap_or(0.0))?,
             axes,
             timing: self.timing(&f.imu)?,
+            imu_format: match &f.imu_file {
+                Some(m) => self.imu_format(m)?,
+                None => ImuFormat::default(),
+            },
         })
+    }
+
+    /// `[imu_file]`: the layout and units of the IMU file.
+    fn imu_format(&self, m: &ImuFile) -> Result<ImuFormat, InputError> {
+        let key = |k: &str| format!("imu_file.{k}");
+        let mut f = ImuFormat::default();
+        f.delimiter = match m.delimiter.as_deref().unwrap_or("whitespace") {
+            "whitespace" => Delimiter::Whitespace,
+            "," => Delimiter::Char(','),
+            ";" => Delimiter::Char(';'),
+            "tab" => Delimiter::Char('\t'),
+            other => {
+                return Err(self.err(
+                    &key("delimiter"),
+                    format!("expected `whitespace`, `,`, `;` or `tab`, found `{other}`"),
+                ))
+            }
+        };
+        f.header_lines = m.header_lines.unwrap_or(0);
+        // Without a columns table the GINS columns, and no odometer column
+        // unless one is named.
+        f.odometer = None;
+        if let Some(c) = &m.columns {
+            let mut all = vec![("time", c.time)];
+            all.extend(c.week.map(|w| ("week", w)));
+            all.extend(c.gyro.iter().map(|&g| ("gyro", g)));
+            all.extend(c.accel.iter().map(|&a| ("accel", a)));
+            all.extend(c.odometer.map(|o| ("odometer", o)));
+            for (name, col) in &all {
+                if *col == 0 || *col > 64 {
+                    return Err(self.err(
+                        &key(&format!("columns.{name}")),
+                        format!("expected a column number from 1 to 64, found {col}"),
+                    ));
+                }
+            }
+            for (i, (name, col)) in all.iter().enumerate() {
+                if let Some((other, _)) = all[..i].iter().find(|(_, c)| c == col) {
+                    return Err(self.err(
+                        &key(&format!("columns.{name}")),
+                        format!("column {col} is already the {other} column"),
+                    ));
+                }
+            }
+            f.time = c.time - 1;
+            f.week = c.week.map(|w| w - 1);
+            f.gyro = c.gyro.map(|g| g - 1);
+            f.accel = c.accel.map(|a| a - 1);
+            f.odometer = c.odometer.map(|o| o - 1);
+        }
+        f.time_base = match m.time.as_deref().unwrap_or("seconds-of-week") {
+            "seconds-of-week" => TimeBase::SecondsOfWeek,
+            "week-seconds" => TimeBase::WeekSeconds,
+            "unix" => match m.leap_seconds {
+                Some(l) if (0.0..=100.0).contains(&l) && l.fract() == 0.0 => {
+                    TimeBase::Unix { leap_seconds: l }
+                }
+                Some(l) => {
+                    return Err(self.err(
+                        &key("leap_seconds"),
+                        format!("expected whole seconds from 0 to 100 (18 since 2017), found {l}"),
+                    ))
+                }
+                None => {
+                    return Err(self.err(
+                        &key("leap_seconds"),
+                        "`unix` time needs leap_seconds, GPS − UTC (18 s since 2017-01-01)",
+                    ))
+                }
+            },
+            other => {
+                return Err(self.err(
+                    &key("time"),
+                    format!(
+                        "expected `seconds-of-week`, `week-seconds` or `unix`, found `{other}`"
+                    ),
+                ))
+            }
+        };
+        if m.leap_seconds.is_some() && !matches!(f.time_base, TimeBase::Unix { .. }) {
+            return Err(self.err(&key("leap_seconds"), "only `unix` time takes leap_seconds"));
+        }
+        match (f.time_base, f.week) {
+            (TimeBase::WeekSeconds, None) => {
+                return Err(self.err(&key("time"), "`week-seconds` needs a columns.week"))
+            }
+            (TimeBase::WeekSeconds, Some(_)) | (_, None) => {}
+            (_, Some(_)) => {
+                return Err(self.err(
+                    &key("columns.week"),
+                    "a week column needs time = `week-seconds`",
+                ))
+            }
+        }
+        f.measures = match m.measures.as_deref().unwrap_or("increments") {
+            "increments" => Measures::Increments,
+            "rates" => Measures::Rates,
+            other => {
+                return Err(self.err(
+                    &key("measures"),
+                    format!("expected `increments` or `rates`, found `{other}`"),
+                ))
+            }
+        };
+        let rates = f.measures == Measures::Rates;
+        let (gyro_units, accel_units): (&[(&str, f64)], &[&str]) = if rates {
+            (
+                &[
+                    ("rad/s", 1.0),
+                    ("deg/s", PI / 180.0),
+                    ("deg/h", PI / 180.0 / 3600.0),
+                ],
+                &["m/s^2", "g"],
+            )
+        } else {
+            (&[("rad", 1.0), ("deg", PI / 180.0)], &["m/s", "g*s"])
+        };
+        let names = |u: &[&str]| {
+            u.iter()
+                .map(|n| format!("`{n}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let gyro_names: Vec<&str> = gyro_units.iter().map(|u| u.0).collect();
+        let measures = if rates { "rates" } else { "increments" };
+        let gyro = match (m.gyro_unit.as_deref(), rates) {
+            (None, true) => {
+                return Err(self.err(
+                    &key("gyro_unit"),
+                    format!("rates need their unit: one of {}", names(&gyro_names)),
+                ))
+            }
+            (None, false) => "rad",
+            (Some(u), _) => u,
+        };
+        f.gyro_unit = match gyro_units.iter().find(|u| u.0 == gyro) {
+            Some(u) => u.1,
+            None => {
+                return Err(self.err(
+                    &key("gyro_unit"),
+                    format!("{measures} are in {}, found `{gyro}`", names(&gyro_names)),
+                ))
+            }
+        };
+        let accel = match (m.accel_unit.as_deref(), rates) {
+            (None, true) => {
+                return Err(self.err(
+                    &key("accel_unit"),
+                    format!("rates need their unit: one of {}", names(accel_units)),
+                ))
+            }
+            (None, false) => "m/s",
+            (Some(u), _) => u,
+        };
+        if !accel_units.contains(&accel) {
+            return Err(self.err(
+                &key("accel_unit"),
+                format!("{measures} are in {}, found `{accel}`", names(accel_units)),
+            ));
+        }
+        let in_g = accel.starts_with('g');
+        f.accel_unit =
+            match (in_g, m.g) {
+                (true, Some(g)) if (9.7..=9.9).contains(&g) => g,
+                (true, Some(g)) => return Err(self.err(
+                    &key("g"),
+                    format!(
+                        "expected the g of the accelerometer's unit in [9.7, 9.9] m/s², found {g}"
+                    ),
+                )),
+                (true, None) => {
+                    return Err(self.err(
+                        &key("g"),
+                        "an accelerometer unit in g needs the g value it means (9.80665 for \
+                     standard gravity; a datasheet may use another)",
+                    ))
+                }
+                (false, Some(_)) => {
+                    return Err(self.err(&key("g"), "only an accelerometer unit in g takes g"))
+                }
+                (false, None) => 1.0,
+            };
+        if let Some(axes) = &m.axes {
+            let mut mapped = [(0, 1.0); 3];
+            for (i, a) in axes.iter().enumerate() {
+                mapped[i] = signed_axis(a).ok_or_else(|| {
+                    self.err(
+                        &format!("{}[{i}]", key("axes")),
+                        format!("expected `x`, `y` or `z` with an optional sign, found `{a}`"),
+                    )
+                })?;
+            }
+            let probe = ImuFormat {
+                axes: mapped,
+                ..ImuFormat::default()
+            };
+            let det = probe.to_vehicle().determinant();
+            if det.abs() < 0.5 {
+                return Err(self.err(&key("axes"), "each of x, y and z must appear once"));
+            }
+            if det < 0.0 {
+                return Err(self.err(
+                    &key("axes"),
+                    "these axes mirror the IMU (a left-handed frame): one sign is wrong",
+                ));
+            }
+            f.axes = mapped;
+        }
+        if let Some(mt) = &m.mounting {
+            let [r, p, y] = mt.0;
+            let k = key("mounting");
+            let r = self.within(&format!("{k}[0]"), "a roll", "deg", r, (-180.0, 180.0))?;
+            let p = self.within(&format!("{k}[1]"), "a pitch", "deg", p, (-90.0, 90.0))?;
+            let y = self.within(&format!("{k}[2]"), "a yaw", "deg", y, (-180.0, 360.0))?;
+            f.mounting = Some(Euler::new(deg(r), deg(p), deg(y)));
+        }
+        Ok(f)
     }
 
     /// `[imu] max_gap` (s, > 0, default 1) and `long_gap` (`"error"`,

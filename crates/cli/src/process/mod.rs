@@ -158,7 +158,20 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
                 .into(),
         );
     }
-    let imu = ImuReader::open(&args.imu)?;
+    if args.odo && !settings.imu_format.is_gins() && settings.imu_format.odometer.is_none() {
+        return Err(InputError::file(
+            &args.config,
+            "--odo reads the odometer speed from the IMU file: give its column",
+        )
+        .with_key("imu_file.columns.odometer")
+        .into());
+    }
+    let imu = ImuReader::open_with_format(
+        &args.imu,
+        &settings.imu_format,
+        settings.week,
+        settings.start.time,
+    )?;
     let (gnss, layout) = match &args.gnss {
         None => (None, GnssLayout::None),
         Some(p) => {
@@ -191,7 +204,12 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
     };
     let nav_path = args.out.join("result.nav");
     let csv_path = args.out.join("result.csv");
-    let end = last_time(&args.imu).unwrap_or(settings.start.time);
+    // The progress bar's total: the last line's time (GINS layout only).
+    let end = if settings.imu_format.is_gins() {
+        last_time(&args.imu).unwrap_or(settings.start.time)
+    } else {
+        settings.start.time
+    };
     let label = settings.kind.label();
     let sink = Sink::new(SinkSetup {
         label,

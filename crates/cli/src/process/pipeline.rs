@@ -124,7 +124,8 @@ impl Job {
             }
         }
         let first: Vec<ImuRecord> = self.pending.iter().copied().collect();
-        Ok(ImuTiming::new(self.timing_rule, self.imu.path(), &first)?)
+        Ok(ImuTiming::new(self.timing_rule, self.imu.path(), &first)?
+            .integrated(self.imu.integrated()))
     }
 
     /// The next GNSS fix to use at the sample at `t` (the next sample at

@@ -80,6 +80,9 @@ impl TimingReport {
 #[derive(Debug)]
 pub(crate) struct ImuTiming {
     rule: TimingRule,
+    /// The records' increments already cover their actual intervals
+    /// (integrated rates): a dropout needs no rescaling.
+    integrated: bool,
     path: PathBuf,
     report: TimingReport,
 }
@@ -119,6 +122,7 @@ impl ImuTiming {
         let times: Vec<f64> = first.iter().map(|r| r.time).collect();
         Ok(Self {
             rule,
+            integrated: false,
             path: path.to_path_buf(),
             report: TimingReport {
                 nominal: median_interval(&times),
@@ -176,13 +180,20 @@ impl ImuTiming {
         if r.longest.is_none_or(|g| dt > g.seconds) {
             r.longest = Some(gap);
         }
-        let scale = dt / nominal;
+        let scale = if self.integrated { 1.0 } else { dt / nominal };
         Ok(ImuIncrement {
             time: sample.time,
             dt,
             dtheta: sample.dtheta * scale,
             dvel: sample.dvel * scale,
         })
+    }
+
+    /// The same timing for records whose increments already cover their
+    /// actual intervals (integrated rates).
+    pub(crate) fn integrated(mut self, yes: bool) -> Self {
+        self.integrated = yes;
+        self
     }
 
     /// What was seen.
