@@ -672,3 +672,79 @@ fn imu_files_of_other_shapes_are_read_by_configuration() {
         )
     );
 }
+
+#[test]
+fn rtklib_pos_files_are_read_with_their_quality_flags() {
+    let dir = sim(12, 20.0);
+    let gnss = std::fs::read_to_string(dir.join("gnss.txt")).unwrap();
+    let data: Vec<Vec<String>> = gnss
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| l.split(' ').map(String::from).collect())
+        .collect();
+    assert_eq!(data[0].len(), 13, "fixes with velocity");
+    // The same fixes as RTKLIB writes them: date and time in GPST (week 0
+    // starts 1980-01-06), σ, ENU velocity; every fifth fix single (Q = 5).
+    let mut pos = String::from(
+        "% program   : RTKPOST ver.2.4.3\n\
+         % (lat/lon/height=WGS84/ellipsoidal,Q=1:fix,2:float,3:sbas,4:dgps,5:single,6:ppp)\n\
+         %  GPST                  latitude(deg) longitude(deg)  height(m)   Q  ns   sdn(m)   \
+         sde(m)   sdu(m)  sdne(m)  sdeu(m)  sdun(m) age(s)  ratio    vn(m/s)    ve(m/s)    \
+         vu(m/s)      sdvn     sdve     sdvu    sdvne    sdveu    sdvun\n",
+    );
+    let mut kept = String::new();
+    for (k, f) in data.iter().enumerate() {
+        let t: f64 = f[0].parse().unwrap();
+        let q = if k % 5 == 4 { 5 } else { 1 };
+        let vu = -f[9].parse::<f64>().unwrap();
+        pos += &format!(
+            "1980/01/06 00:00:{:06.3} {} {} {} {q} 12 {} {} {} 0 0 0 0.0 99.9 {} {} {vu} {} {} {} 0 0 0\n",
+            t, f[1], f[2], f[3], f[4], f[5], f[6], f[7], f[8], f[10], f[11], f[12]
+        );
+        if q == 1 {
+            kept += &f.join(" ");
+            kept.push('\n');
+        }
+    }
+    std::fs::write(dir.join("sol.pos"), &pos).unwrap();
+    std::fs::write(dir.join("kept.txt"), &kept).unwrap();
+    let base = std::fs::read_to_string(dir.join("process.toml")).unwrap();
+    let config = |name: &str, table: &str| {
+        let p = dir.join(format!("{name}.toml"));
+        std::fs::write(&p, format!("{base}\n{table}")).unwrap();
+        p
+    };
+    let mut a = args(&dir, "pos");
+    a.gnss = Some(dir.join("sol.pos"));
+    a.config = config(
+        "pos",
+        "[gnss_file]\nformat = \"rtklib\"\nquality = [1, 2]\n",
+    );
+    let r = process(&a).unwrap();
+    assert_eq!((r.fixes_used, r.fixes_refused_quality), (16, 4));
+    assert!(summary(&r).contains("4 GNSS fixes skipped for their quality flag"));
+    // Bit for bit the run on the GINS file without the single fixes.
+    let mut b = args(&dir, "kept");
+    b.gnss = Some(dir.join("kept.txt"));
+    process(&b).unwrap();
+    let read = |d: &str| std::fs::read_to_string(dir.join(d).join("result.nav")).unwrap();
+    assert_eq!(read("pos"), read("kept"));
+    // What RTKLIB options kestrel cannot read, and a σ of 0, are named.
+    let cases = [
+        (pos.replace("%  GPST ", "%  UTC "), 3, 1, "time in UTC: set RTKLIB's time system to GPST (out-timesys = gpst)"),
+        (pos.replace("latitude(deg) longitude(deg)  height(m)", "x-ecef(m) y-ecef(m) z-ecef(m)"), 3, 1, "positions in ECEF or ENU: set RTKLIB's solution format to lat/lon/height (out-solformat = llh) in decimal degrees"),
+        (pos.replacen(" 12 ", " 12 0 ", 1).replacen(" 0 0 0 0.0 99.9", " 0 0 0.0 99.9", 1), 4, 8, "expected a standard deviation in [1e-150, 1e150] (its square must be a normal double), found 0 (RTKLIB writes 0 when it has no estimate; use [gnss] noise = \"fixed\" and drop such lines)"),
+    ];
+    for (text, line, column, msg) in cases {
+        std::fs::write(dir.join("bad.pos"), text).unwrap();
+        a.gnss = Some(dir.join("bad.pos"));
+        let e = process(&a).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            format!("{}:{line}:{column}: {msg}", dir.join("bad.pos").display())
+        );
+    }
+    a.config = config("q", "[gnss_file]\nformat = \"rtklib\"\nquality = [7]\n");
+    let e = process(&a).unwrap_err().to_string();
+    assert!(e.ends_with("key `gnss_file.quality`: expected RTKLIB's flags 1 (fix), 2 (float), 3 (SBAS), 4 (DGPS), 5 (single), 6 (PPP), found 7"), "{e}");
+}

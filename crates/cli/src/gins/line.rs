@@ -61,6 +61,9 @@ pub(crate) struct Selection {
 #[derive(Debug)]
 pub(crate) struct Lines<R> {
     selection: Option<Selection>,
+    /// The comment character (`#`; `%` for RTKLIB's header lines, which
+    /// the RTKLIB reader reads itself).
+    comment: Option<u8>,
     reader: R,
     path: PathBuf,
     bytes: Vec<u8>,
@@ -93,6 +96,7 @@ impl<R: BufRead> Lines<R> {
     ) -> Self {
         Self {
             selection: None,
+            comment: Some(b'#'),
             reader,
             path: path.to_path_buf(),
             bytes: Vec::with_capacity(256),
@@ -111,6 +115,35 @@ impl<R: BufRead> Lines<R> {
         let mut lines = Self::new(reader, path, &[], &[], "");
         lines.selection = Some(selection);
         lines
+    }
+
+    /// Lines of `reader` returned whole by [`next_text`](Self::next_text)
+    /// (no comment character): for formats with their own header syntax.
+    pub(crate) fn raw(reader: R, path: &Path) -> Self {
+        let mut lines = Self::new(reader, path, &[], &[], "");
+        lines.comment = None;
+        lines
+    }
+
+    /// The next non-blank line's number and text (line end removed), `None`
+    /// at the end of the file.
+    pub(crate) fn next_text(&mut self) -> Option<Result<(usize, &str), InputError>> {
+        if self.failed {
+            return None;
+        }
+        loop {
+            match self.read_line() {
+                Ok(false) => return None,
+                Ok(true) => {}
+                Err(e) => {
+                    self.failed = true;
+                    return Some(Err(e));
+                }
+            }
+            if !self.buf.bytes().all(|b| b.is_ascii_whitespace()) {
+                return Some(Ok((self.line, self.buf.trim_end())));
+            }
+        }
     }
 
     /// The file's name for errors.
@@ -177,7 +210,7 @@ impl<R: BufRead> Lines<R> {
         if self.line == 1 {
             data = data.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(data);
         }
-        if let Some(i) = data.iter().position(|&b| b == b'#') {
+        if let Some(i) = self.comment.and_then(|c| data.iter().position(|&b| b == c)) {
             data = &data[..i];
         }
         match std::str::from_utf8(data) {

@@ -31,6 +31,7 @@ pub mod imu_format;
 mod line;
 mod nav;
 pub mod physical;
+mod rtklib;
 mod stream;
 mod tail;
 
@@ -40,4 +41,5 @@ pub use imu::{ImuReader, ImuRecord, ImuWriter};
 pub use line::{Delimiter, Fields};
 pub(crate) use nav::WEEK_SECONDS;
 pub use nav::{nav_line, NavReader, NavRecord, NavWriter};
+pub use rtklib::RtklibReader;
 pub use tail::last_time;

@@ -77,6 +77,29 @@ struct File {
     #[serde(default)]
     output: Output,
     imu_file: Option<ImuFile>,
+    gnss_file: Option<GnssFile>,
+}
+
+/// `[gnss_file]`: the GNSS file's format.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct GnssFile {
+    format: Option<String>,
+    quality: Option<Vec<u8>>,
+}
+
+/// The GNSS file's format.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum GnssFormat {
+    /// The GINS text format (7 or 13 columns).
+    #[default]
+    Gins,
+    /// RTKLIB `.pos`, keeping the fixes whose quality flag `Q` is listed.
+    Rtklib {
+        /// The accepted `Q` values (1 fix, 2 float, 3 SBAS, 4 DGPS, 5 single,
+        /// 6 PPP).
+        quality: Vec<u8>,
+    },
 }
 
 /// `[imu_file]`: how the IMU file is laid out (default: the GINS format).
@@ -255,6 +278,8 @@ pub struct Settings {
     pub timing: TimingRule,
     /// How the IMU file is laid out.
     pub imu_format: ImuFormat,
+    /// The GNSS file's format.
+    pub gnss_format: GnssFormat,
 }
 
 /// Reads and validates the configuration at `path`.
@@ -583,7 +608,47 @@ impl Check<'_> {
                 Some(m) => self.imu_format(m)?,
                 None => ImuFormat::default(),
             },
+            gnss_format: self.gnss_format(f.gnss_file.as_ref())?,
         })
+    }
+
+    /// `[gnss_file]`: `format` (`gins`, default, or `rtklib`) and, for
+    /// RTKLIB, the accepted quality flags (default all, 1 … 6).
+    fn gnss_format(&self, g: Option<&GnssFile>) -> Result<GnssFormat, InputError> {
+        let Some(g) = g else {
+            return Ok(GnssFormat::Gins);
+        };
+        match g.format.as_deref().unwrap_or("gins") {
+            "gins" => {
+                if g.quality.is_some() {
+                    return Err(self.err(
+                        "gnss_file.quality",
+                        "only format = `rtklib` has quality flags",
+                    ));
+                }
+                Ok(GnssFormat::Gins)
+            }
+            "rtklib" => {
+                let quality = g.quality.clone().unwrap_or_else(|| (1..=6).collect());
+                if quality.is_empty() {
+                    return Err(self.err("gnss_file.quality", "accept at least one quality flag"));
+                }
+                if let Some(q) = quality.iter().find(|q| !(1..=6).contains(*q)) {
+                    return Err(self.err(
+                        "gnss_file.quality",
+                        format!(
+                            "expected RTKLIB's flags 1 (fix), 2 (float), 3 (SBAS), 4 (DGPS), \
+                             5 (single), 6 (PPP), found {q}"
+                        ),
+                    ));
+                }
+                Ok(GnssFormat::Rtklib { quality })
+            }
+            other => Err(self.err(
+                "gnss_file.format",
+                format!("expected `gins` or `rtklib`, found `{other}`"),
+            )),
+        }
     }
 
     /// `[imu_file]`: the layout and units of the IMU file.
@@ -745,27 +810,28 @@ impl Check<'_> {
             ));
         }
         let in_g = accel.starts_with('g');
-        f.accel_unit =
-            match (in_g, m.g) {
-                (true, Some(g)) if (9.7..=9.9).contains(&g) => g,
-                (true, Some(g)) => return Err(self.err(
+        f.accel_unit = match (in_g, m.g) {
+            (true, Some(g)) if (9.7..=9.9).contains(&g) => g,
+            (true, Some(g)) => {
+                return Err(self.err(
                     &key("g"),
                     format!(
                         "expected the g of the accelerometer's unit in [9.7, 9.9] m/s², found {g}"
                     ),
-                )),
-                (true, None) => {
-                    return Err(self.err(
-                        &key("g"),
-                        "an accelerometer unit in g needs the g value it means (9.80665 for \
+                ))
+            }
+            (true, None) => {
+                return Err(self.err(
+                    &key("g"),
+                    "an accelerometer unit in g needs the g value it means (9.80665 for \
                      standard gravity; a datasheet may use another)",
-                    ))
-                }
-                (false, Some(_)) => {
-                    return Err(self.err(&key("g"), "only an accelerometer unit in g takes g"))
-                }
-                (false, None) => 1.0,
-            };
+                ))
+            }
+            (false, Some(_)) => {
+                return Err(self.err(&key("g"), "only an accelerometer unit in g takes g"))
+            }
+            (false, None) => 1.0,
+        };
         if let Some(axes) = &m.axes {
             let mut mapped = [(0, 1.0); 3];
             for (i, a) in axes.iter().enumerate() {

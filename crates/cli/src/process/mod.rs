@@ -31,7 +31,7 @@ use clap::Args;
 use kestrel::nav::experiment::PositionAxes;
 use kestrel::nav::scenario::FilterKind;
 
-use crate::gins::{last_time, GnssReader, ImuReader};
+use crate::gins::{last_time, ImuReader};
 use crate::plot::{figures_of, FilterTrace};
 use crate::{CliError, InputError};
 
@@ -44,7 +44,7 @@ pub use stats::{ErrorStats, SumOfSquares};
 use dispatch::{dispatch, GnssLayout};
 use drift::DriftTable;
 use evaluation::{Evaluation, EvaluationSetup, Truth};
-use pipeline::{GnssSource, Job};
+use pipeline::{GnssInput, GnssSource, Job};
 use sink::{Sink, SinkSetup};
 
 /// Arguments of `kestrel process`.
@@ -97,6 +97,8 @@ pub struct ProcessReport {
     pub fixes_used: usize,
     /// GNSS fixes skipped in outage windows.
     pub fixes_in_outage: usize,
+    /// GNSS fixes skipped for their quality flag (RTKLIB `Q`).
+    pub fixes_refused_quality: usize,
     /// GNSS fixes at or before the initial time (read, checked, unused).
     pub fixes_before_start: usize,
     /// GNSS fixes after the last IMU sample (read, checked, unused).
@@ -175,7 +177,8 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
     let (gnss, layout) = match &args.gnss {
         None => (None, GnssLayout::None),
         Some(p) => {
-            let mut g = GnssSource::open(GnssReader::open(p)?)?;
+            let mut g =
+                GnssSource::open(GnssInput::open(p, &settings.gnss_format, settings.week)?)?;
             let layout = match g.peek()? {
                 None => GnssLayout::None,
                 Some(f) if f.vel.is_some() => GnssLayout::PositionVelocity,
@@ -197,7 +200,9 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
             csv_path: args.out.join("errors.csv"),
             drift: DriftTable::new(
                 &args.outages,
-                args.gnss.as_deref().and_then(gnss_gap_threshold),
+                args.gnss
+                    .as_deref()
+                    .and_then(|p| gnss_gap_threshold(p, &settings)),
                 settings.start.time,
             ),
         })?),
@@ -271,6 +276,7 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
         end_time: job.sink.end_time,
         fixes_used: job.fixes_used,
         fixes_in_outage: job.fixes_in_outage,
+        fixes_refused_quality: job.gnss.as_ref().map_or(0, GnssSource::refused),
         fixes_before_start: job.fixes_before_start,
         fixes_after_end: job.fixes_after_end,
         updates: job.sink.updates,
@@ -286,8 +292,8 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
 /// 1.5 × the median interval of the first 21 intervals of the GNSS file:
 /// longer intervals between fixes are data gaps. `None` if the file has
 /// fewer than two fixes (an unreadable line is the main reader's to report).
-fn gnss_gap_threshold(path: &Path) -> Option<f64> {
-    let times: Vec<f64> = GnssReader::open(path)
+fn gnss_gap_threshold(path: &Path, settings: &Settings) -> Option<f64> {
+    let times: Vec<f64> = GnssInput::open(path, &settings.gnss_format, settings.week)
         .ok()?
         .take(22)
         .map_while(Result::ok)
@@ -479,6 +485,12 @@ pub fn summary(r: &ProcessReport) -> String {
         r.filter, r.samples, r.end_time, r.fixes_used, r.fixes_in_outage, r.updates, r.rejected
     );
     s += &timing_summary(&r.timing);
+    if r.fixes_refused_quality > 0 {
+        s += &format!(
+            "{} GNSS fixes skipped for their quality flag (gnss_file.quality)\n",
+            r.fixes_refused_quality
+        );
+    }
     if r.fixes_before_start > 0 {
         s += &format!(
             "warning: {} GNSS fixes at or before the initial time were not used\n",

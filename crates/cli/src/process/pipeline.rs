@@ -12,12 +12,13 @@ use kestrel::nav::experiment::Adaptation;
 use kestrel::nav::measurement::{GnssFix, OdometerReading};
 use kestrel::FilterError;
 
+use super::config::GnssFormat;
 use super::divergence::{describe, Step};
 use super::outage::Outage;
 use super::schedule::Schedule;
 use super::sink::Sink;
 use super::timing::{ImuTiming, TimingReport, TimingRule, NOMINAL_SAMPLES};
-use crate::gins::{GnssReader, ImuReader, ImuRecord};
+use crate::gins::{GnssReader, ImuReader, ImuRecord, RtklibReader};
 use crate::{CliError, InputError};
 
 /// The inputs of a run and its outputs.
@@ -44,16 +45,74 @@ pub(crate) struct Job {
     pub pending: VecDeque<ImuRecord>,
 }
 
+/// The GNSS file in the format the configuration names.
+pub(crate) enum GnssInput {
+    /// The GINS text format.
+    Gins(GnssReader<BufReader<File>>),
+    /// RTKLIB `.pos`.
+    Rtklib(RtklibReader<BufReader<File>>),
+}
+
+impl GnssInput {
+    /// Opens the GNSS file at `path` in `format`; times in seconds of GPS
+    /// week `week0`.
+    pub(crate) fn open(
+        path: &std::path::Path,
+        format: &GnssFormat,
+        week0: u32,
+    ) -> Result<Self, InputError> {
+        Ok(match format {
+            GnssFormat::Gins => Self::Gins(GnssReader::open(path)?),
+            GnssFormat::Rtklib { quality } => {
+                Self::Rtklib(RtklibReader::open(path, week0, quality)?)
+            }
+        })
+    }
+
+    fn last_line(&self) -> Option<usize> {
+        match self {
+            Self::Gins(r) => r.last_line(),
+            Self::Rtklib(r) => r.last_line(),
+        }
+    }
+
+    fn path(&self) -> &std::path::Path {
+        match self {
+            Self::Gins(r) => r.path(),
+            Self::Rtklib(r) => r.path(),
+        }
+    }
+
+    /// Fixes skipped for their quality flag.
+    pub(crate) fn refused(&self) -> usize {
+        match self {
+            Self::Gins(_) => 0,
+            Self::Rtklib(r) => r.refused(),
+        }
+    }
+}
+
+impl Iterator for GnssInput {
+    type Item = Result<GnssFix, InputError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        match self {
+            Self::Gins(r) => r.next(),
+            Self::Rtklib(r) => r.next(),
+        }
+    }
+}
+
 /// The GNSS file read one fix ahead, each fix with its line.
 pub(crate) struct GnssSource {
-    reader: GnssReader<BufReader<File>>,
+    reader: GnssInput,
     ahead: Option<(GnssFix, usize)>,
 }
 
 impl GnssSource {
     /// The GNSS file at its first fix (an error in the lines before it is
     /// returned here).
-    pub(crate) fn open(reader: GnssReader<BufReader<File>>) -> Result<Self, InputError> {
+    pub(crate) fn open(reader: GnssInput) -> Result<Self, InputError> {
         let mut s = Self {
             reader,
             ahead: None,
@@ -86,6 +145,11 @@ impl GnssSource {
     /// The file's name.
     pub(crate) fn path(&self) -> &std::path::Path {
         self.reader.path()
+    }
+
+    /// Fixes skipped for their quality flag.
+    pub(crate) fn refused(&self) -> usize {
+        self.reader.refused()
     }
 }
 
