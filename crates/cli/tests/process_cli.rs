@@ -41,6 +41,7 @@ fn args(dir: &Path, odo: bool) -> ProcessArgs {
         imu: dir.join("imu.txt"),
         gnss: Some(dir.join("gnss.txt")),
         odo,
+        odometer: None,
         truth: Some(dir.join("truth.nav")),
         config: dir.join("process.toml"),
         out: dir.join("result"),

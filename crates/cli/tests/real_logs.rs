@@ -35,6 +35,7 @@ fn args(dir: &Path, out: &str) -> ProcessArgs {
         imu: dir.join("imu.txt"),
         gnss: Some(dir.join("gnss.txt")),
         odo: false,
+        odometer: None,
         truth: Some(dir.join("truth.nav")),
         config: dir.join("process.toml"),
         out: dir.join(out),
@@ -747,4 +748,81 @@ fn rtklib_pos_files_are_read_with_their_quality_flags() {
     a.config = config("q", "[gnss_file]\nformat = \"rtklib\"\nquality = [7]\n");
     let e = process(&a).unwrap_err().to_string();
     assert!(e.ends_with("key `gnss_file.quality`: expected RTKLIB's flags 1 (fix), 2 (float), 3 (SBAS), 4 (DGPS), 5 (single), 6 (PPP), found 7"), "{e}");
+}
+
+#[test]
+fn the_odometer_in_its_own_file_and_with_position_only_gnss() {
+    static N: AtomicUsize = AtomicUsize::new(0);
+    let k = N.fetch_add(1, Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("kestrel-odo-{}-{k}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    simulate(&SimulateArgs {
+        scenario: "003".into(),
+        seed: Some(2),
+        duration: Some(20.0),
+        imu_rate: None,
+        out: dir.clone(),
+        force: false,
+    })
+    .unwrap();
+    let imu = std::fs::read_to_string(dir.join("imu.txt")).unwrap();
+    let mut odo = String::new();
+    let mut seven = String::new();
+    for l in imu.lines().filter(|l| !l.starts_with('#')) {
+        let f: Vec<&str> = l.split(' ').collect();
+        odo += &format!("{} {}\n", f[0], f[7]);
+        seven += &(f[..7].join(" ") + "\n");
+    }
+    std::fs::write(dir.join("odo.txt"), odo).unwrap();
+    std::fs::write(dir.join("imu7.txt"), seven).unwrap();
+    let mut a = args(&dir, "column");
+    a.gnss = None;
+    a.odo = true;
+    let column = process(&a).unwrap();
+    let mut b = args(&dir, "file");
+    b.gnss = None;
+    b.imu = dir.join("imu7.txt");
+    b.odometer = Some(dir.join("odo.txt"));
+    let file = process(&b).unwrap();
+    assert_eq!(column.updates, file.updates);
+    assert!(file.updates > 0);
+    let read = |d: &str| std::fs::read_to_string(dir.join(d).join("result.nav")).unwrap();
+    assert_eq!(
+        read("column"),
+        read("file"),
+        "the same speeds give the same run"
+    );
+
+    // Position-only GNSS (7 columns, from the truth at 1 Hz) with the
+    // odometer model: accepted, and it bounds the position error.
+    let truth = std::fs::read_to_string(dir.join("truth.nav")).unwrap();
+    let fixes: String = truth
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .filter_map(|l| {
+            let f: Vec<&str> = l.split(' ').collect();
+            let t: f64 = f[1].parse().ok()?;
+            (t > 0.0 && t.fract() == 0.0)
+                .then(|| format!("{} {} {} {} 1 1 2\n", f[1], f[2], f[3], f[4]))
+        })
+        .collect();
+    std::fs::write(dir.join("gnss7.txt"), fixes).unwrap();
+    let mut c = args(&dir, "pos-only");
+    c.gnss = Some(dir.join("gnss7.txt"));
+    c.odo = true;
+    let aided = process(&c).unwrap();
+    assert_eq!(aided.fixes_used, 20);
+    let (with, without) = (aided.errors.unwrap(), column.errors.unwrap());
+    assert!(
+        with.max_position_3d < without.max_position_3d,
+        "{with:?} {without:?}"
+    );
+    // Both sources at once is refused.
+    c.odometer = Some(dir.join("odo.txt"));
+    let e = process(&c).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "give the odometer speeds either in the IMU file (--odo) or in their own file \
+         (--odometer), not both"
+    );
 }

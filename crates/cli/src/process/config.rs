@@ -215,6 +215,8 @@ struct Odometer {
     nhc_std: f64,
     #[serde(default)]
     mounting: Exact<2>,
+    #[serde(default)]
+    lever_arm: V3,
     scale_tau: f64,
     scale_sigma: f64,
 }
@@ -241,6 +243,9 @@ pub struct OdometerSettings {
     pub nhc_std: f64,
     /// Mounting pitch and yaw of the odometer against the IMU, rad.
     pub mounting: [f64; 2],
+    /// The odometer's reference point from the IMU, body
+    /// forward-right-down, m.
+    pub lever_arm: Vector3<f64>,
     /// Steady-state σ of the scale-factor Markov process (ratio).
     pub scale_sigma: f64,
 }
@@ -976,6 +981,7 @@ impl Check<'_> {
                     (-180.0, 360.0),
                 )?),
             ],
+            lever_arm: self.vec("odometer.lever_arm", o.lever_arm, Self::finite, id)?,
             scale_sigma: self.sigma("odometer.scale_sigma", o.scale_sigma, id, Zero::Absent)?,
         })
     }

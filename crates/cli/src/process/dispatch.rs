@@ -196,31 +196,39 @@ fn odometer<P: OdometerProcessing>(
             "odometer filters need error_model = `odometer16`".into(),
         ));
     };
-    if layout == GnssLayout::Position {
-        return Err(CliError::Failed(
-            "the odometer model takes GNSS fixes with velocity (13 columns) only".into(),
-        ));
-    }
     let o = s.odometer.unwrap_or(OdometerSettings {
         rate: 0.0,
         speed_std: 1.0,
         nhc_std: 1.0,
         mounting: [0.0, 0.0],
+        lever_arm: kestrel::nav::nalgebra::Vector3::zeros(),
         scale_sigma: 0.0,
     });
     let [pitch, yaw] = o.mounting;
     let mut aid = OdometerAiding {
-        odometer: Odometer::new(o.speed_std, o.nhc_std).with_mounting(pitch, yaw),
+        odometer: Odometer::new(o.speed_std, o.nhc_std)
+            .with_mounting(pitch, yaw)
+            .with_lever_arm(o.lever_arm),
         processing,
     };
     let scale = ScaleFactorProcess::new(scale_tau, o.scale_sigma, s.p0.odometer_scale);
     let system = InsOdometer16::new(s.imu, scale);
     let mut engine = engine(s, system, ekf::<16, _>(s, (), FadeBlock::All)?);
     let gnss = gnss_aiding(s);
-    drive(
-        job,
-        &mut engine,
-        |e, f| FixUpdate::<6>::fix(&gnss, e, f),
-        |e, r| aid.update(e, r),
-    )
+    // Position-only fixes update the position, fixes with velocity both.
+    if layout == GnssLayout::Position {
+        drive(
+            job,
+            &mut engine,
+            |e, f| FixUpdate::<3>::fix(&gnss, e, f),
+            |e, r| aid.update(e, r),
+        )
+    } else {
+        drive(
+            job,
+            &mut engine,
+            |e, f| FixUpdate::<6>::fix(&gnss, e, f),
+            |e, r| aid.update(e, r),
+        )
+    }
 }

@@ -31,7 +31,7 @@ use clap::Args;
 use kestrel::nav::experiment::PositionAxes;
 use kestrel::nav::scenario::FilterKind;
 
-use crate::gins::{last_time, ImuReader};
+use crate::gins::{last_time, ImuReader, OdometerReader};
 use crate::plot::{figures_of, FilterTrace};
 use crate::{CliError, InputError};
 
@@ -44,7 +44,7 @@ pub use stats::{ErrorStats, SumOfSquares};
 use dispatch::{dispatch, GnssLayout};
 use drift::DriftTable;
 use evaluation::{Evaluation, EvaluationSetup, Truth};
-use pipeline::{GnssInput, GnssSource, Job};
+use pipeline::{GnssInput, GnssSource, Job, OdometerFile};
 use sink::{Sink, SinkSetup};
 
 /// Arguments of `kestrel process`.
@@ -64,6 +64,10 @@ pub struct ProcessArgs {
     /// of the configuration's [odometer] table.
     #[arg(long)]
     pub odo: bool,
+    /// Odometer file (`sow speed`, m/s): speeds at the rate of the
+    /// configuration's [odometer] table (instead of --odo).
+    #[arg(long, value_name = "FILE", conflicts_with = "odo")]
+    pub odometer: Option<PathBuf>,
     /// Reference trajectory (week, seconds of week, lat, lon (deg), h (m),
     /// velocity NED (m/s), roll pitch yaw (deg)): errors, RMS and plots.
     #[arg(long, value_name = "FILE")]
@@ -145,7 +149,7 @@ pub fn run(args: &ProcessArgs) -> Result<(), CliError> {
 /// simulate(&SimulateArgs { scenario: "002".into(), seed: Some(1), duration: Some(5.0),
 ///     imu_rate: None, out: dir.clone(), force: true }).unwrap();
 /// let r = process(&ProcessArgs { imu: dir.join("imu.txt"), gnss: Some(dir.join("gnss.txt")),
-///     odo: false, truth: Some(dir.join("truth.nav")), config: dir.join("process.toml"),
+///     odo: false, odometer: None, truth: Some(dir.join("truth.nav")), config: dir.join("process.toml"),
 ///     out: dir.join("result"), outages: vec!["2:3".parse().unwrap()], no_plots: true }).unwrap();
 /// assert_eq!((r.samples, r.fixes_used, r.fixes_in_outage), (1000, 3, 2));
 /// assert_eq!(r.errors.unwrap().epochs, 3);
@@ -153,12 +157,21 @@ pub fn run(args: &ProcessArgs) -> Result<(), CliError> {
 /// ```
 pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
     let settings = config::load(&args.config)?;
-    if args.odo && settings.odometer.is_none() {
-        return Err(
-            InputError::file(&args.config, "--odo needs an [odometer] table")
-                .with_key("odometer")
+    if args.odo && args.odometer.is_some() {
+        return Err(CliError::Failed(
+            "give the odometer speeds either in the IMU file (--odo) or in their own file \
+             (--odometer), not both"
                 .into(),
-        );
+        ));
+    }
+    let odo_flag = if args.odo { "--odo" } else { "--odometer" };
+    if (args.odo || args.odometer.is_some()) && settings.odometer.is_none() {
+        return Err(InputError::file(
+            &args.config,
+            format!("{odo_flag} needs an [odometer] table"),
+        )
+        .with_key("odometer")
+        .into());
     }
     if args.odo && !settings.imu_format.is_gins() && settings.imu_format.odometer.is_none() {
         return Err(InputError::file(
@@ -228,10 +241,14 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
     let mut job = Job {
         imu,
         gnss,
-        odometer_rate: if args.odo {
+        odometer_rate: if args.odo || args.odometer.is_some() {
             settings.odometer.map(|o| o.rate)
         } else {
             None
+        },
+        odometer_file: match &args.odometer {
+            Some(p) => Some(OdometerFile::new(OdometerReader::open(p)?)),
+            None => None,
         },
         outages: args.outages.clone(),
         start: settings.start.time,
@@ -329,6 +346,7 @@ fn refuse_overwriting_inputs(args: &ProcessArgs) -> Result<(), CliError> {
         ("--imu", Some(&args.imu)),
         ("--gnss", args.gnss.as_ref()),
         ("--truth", args.truth.as_ref()),
+        ("--odometer", args.odometer.as_ref()),
         ("--config", Some(&args.config)),
     ];
     for (flag, input) in inputs {

@@ -18,15 +18,17 @@ use super::outage::Outage;
 use super::schedule::Schedule;
 use super::sink::Sink;
 use super::timing::{ImuTiming, TimingReport, TimingRule, NOMINAL_SAMPLES};
-use crate::gins::{GnssReader, ImuReader, ImuRecord, RtklibReader};
+use crate::gins::{GnssReader, ImuReader, ImuRecord, OdometerReader, RtklibReader, SpeedRecord};
 use crate::{CliError, InputError};
 
 /// The inputs of a run and its outputs.
 pub(crate) struct Job {
     pub imu: ImuReader<BufReader<File>>,
     pub gnss: Option<GnssSource>,
-    /// Odometer update rate (Hz) when the 8th IMU column is used.
+    /// Odometer update rate (Hz) when odometer speeds are used.
     pub odometer_rate: Option<f64>,
+    /// The odometer's own file (else the IMU file's odometer column).
+    pub odometer_file: Option<OdometerFile>,
     pub outages: Vec<Outage>,
     pub start: f64,
     pub sink: Sink,
@@ -43,6 +45,52 @@ pub(crate) struct Job {
     pub timing: TimingReport,
     /// IMU records read ahead (to estimate the nominal interval).
     pub pending: VecDeque<ImuRecord>,
+}
+
+/// A reading of the odometer file is used for this long after its time, s:
+/// longer, the odometer is taken to be silent (no update).
+pub const ODOMETER_MAX_AGE: f64 = 1.0;
+
+/// The odometer's own file, read forward: the speed at a time is the
+/// latest reading at or before it.
+pub(crate) struct OdometerFile {
+    reader: OdometerReader<BufReader<File>>,
+    ahead: Option<SpeedRecord>,
+    latest: Option<SpeedRecord>,
+}
+
+impl OdometerFile {
+    pub(crate) fn new(reader: OdometerReader<BufReader<File>>) -> Self {
+        Self {
+            reader,
+            ahead: None,
+            latest: None,
+        }
+    }
+
+    /// The speed at `t` and its line: the latest reading at or before `t`,
+    /// if at most [`ODOMETER_MAX_AGE`] old.
+    fn speed_at(&mut self, t: f64) -> Result<Option<(f64, usize)>, InputError> {
+        loop {
+            if self.ahead.is_none() {
+                self.ahead = self.reader.next().transpose()?;
+            }
+            match self.ahead {
+                Some(r) if r.time <= t => {
+                    self.latest = self.ahead.take();
+                }
+                _ => break,
+            }
+        }
+        Ok(self
+            .latest
+            .filter(|r| t - r.time <= ODOMETER_MAX_AGE)
+            .map(|r| (r.speed, r.line)))
+    }
+
+    fn path(&self) -> &std::path::Path {
+        self.reader.path()
+    }
 }
 
 /// The GNSS file in the format the configuration names.
@@ -265,7 +313,7 @@ where
     let mut previous = (job.start, None);
     let mut timing = job.start_timing()?;
     let mut current = job.next_imu()?;
-    if let (Some(_), Some(r)) = (job.odometer_rate, &current) {
+    if let (Some(_), Some(r), None) = (job.odometer_rate, &current, &job.odometer_file) {
         if r.odometer.is_none() {
             return Err(InputError::at(
                 job.imu.path(),
@@ -355,10 +403,20 @@ where
         };
         update = Some(gnss(engine, &fix).map_err(|e| diverged(e, Step::Gnss(rows), &input))?);
     }
-    if let (Some(rate), Some(speed)) = (job.odometer_rate, sample.odometer) {
+    let speed = match job.odometer_file.as_mut() {
+        Some(f) => f.speed_at(t)?.map(|(speed, line)| {
+            (
+                speed,
+                format!("odometer line {}:{line}", f.path().display()),
+            )
+        }),
+        None => sample
+            .odometer
+            .map(|speed| (speed, format!("odometer speed of IMU line {imu_line}"))),
+    };
+    if let (Some(rate), Some((speed, input))) = (job.odometer_rate, speed) {
         if schedule.due(t, rate) {
             let reading = OdometerReading::new(t, speed);
-            let input = format!("odometer speed of IMU line {imu_line}");
             update =
                 Some(odometer(engine, &reading).map_err(|e| diverged(e, Step::Odometer, &input))?);
         }
