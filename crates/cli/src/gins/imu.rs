@@ -217,7 +217,7 @@ fn configured_record<R: BufRead>(
                 Some((_, g, a)) => ((g + sample.gyro) * 0.5, (a + sample.accel) * 0.5),
                 None => (sample.gyro, sample.accel),
             };
-            let from = c.previous.map_or(c.start, |p| p.0);
+            let from = c.previous.map_or(c.start, |p| p.0.max(c.start));
             c.previous = Some((time, sample.gyro, sample.accel));
             let dt = (time - from).max(0.0);
             (gyro * dt, accel * dt)
