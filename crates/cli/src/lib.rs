@@ -7,6 +7,7 @@
 pub mod demo;
 pub mod error;
 pub mod gins;
+pub mod import;
 pub mod output;
 pub mod plot;
 pub mod process;

@@ -3,7 +3,7 @@
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use kestrel_cli::{demo, process, reproduce, simulate, CliError};
+use kestrel_cli::{demo, import, process, reproduce, simulate, CliError};
 
 /// State estimation for integrated navigation: reproduce the papers'
 /// experiments, run your own scenarios, process recorded IMU/GNSS data.
@@ -30,6 +30,9 @@ enum Command {
     /// Simulate a scenario's sensors and write them in the open GINS text
     /// formats (input for `process`).
     Simulate(simulate::SimulateArgs),
+    /// Convert another tool's configuration into a `process` configuration
+    /// (KF-GINS YAML), every unit converted exactly.
+    Import(import::ImportArgs),
     /// Track a simulated 2-D target with a range-bearing radar using the
     /// covariance-form EKF, the UKF and the square-root UKF, and print their
     /// accuracy, consistency and cost side by side.
@@ -44,6 +47,7 @@ fn main() -> ExitCode {
         Command::Scenarios => reproduce::list_scenarios(),
         Command::Process(args) => process::run(&args),
         Command::Simulate(args) => simulate::run(&args),
+        Command::Import(args) => import::run(&args),
         Command::Demo(args) => demo::run(&args).map_err(CliError::Failed),
     };
     match result {

@@ -594,3 +594,93 @@ impl kestrel::nav::experiment::FilterLoop<6> for Probe {
     }
     fn odometer<P: kestrel::nav::experiment::OdometerProcessing>(self, _: P) {}
 }
+
+/// A KF-GINS configuration of the shape its example has.
+const KF_GINS: &str = "# KF-GINS configuration file\n\
+imupath: \"./dataset/imu.txt\"\ngnsspath: \"./dataset/gnss.txt\"\noutputpath: \"./dataset\"\n\
+imudatalen: 7\nimudatarate: 200\nstarttime: 456300\nendtime: -1\n\
+initpos: [ 30.4447873701, 114.4718632047, 20.899 ]\ninitvel: [ 0.0, 0.0, 0.0 ]\n\
+initatt: [ 0.85421502, -2.03480295, 185.70235133 ]\n\
+initgyrbias: [ 0, 0, 0 ]    # [deg/h]\ninitaccbias: [ 0, 0, 0 ]    # [mGal]\n\
+initgyrscale: [ 0, 0, 0 ]\ninitaccscale: [ 0, 0, 0 ]\n\
+initposstd: [ 0.005, 0.004, 0.008 ]\ninitvelstd: [ 0.003, 0.004, 0.004 ]\n\
+initattstd: [ 0.003, 0.003, 0.023 ]\n\
+imunoise:\n  arw: [0.003, 0.003, 0.003]\n  vrw: [0.03, 0.03, 0.03]\n  gbstd: [0.027, 0.027, 0.027]\n  \
+abstd: [15.0, 15.0, 15.0]\n  gsstd: [300.0, 300.0, 300.0]\n  asstd: [300.0, 300.0, 300.0]\n  \
+corrtime: 4.0\n\
+antlever:  [ 0.136, -0.301, -0.184 ]\n";
+
+#[test]
+fn a_kf_gins_configuration_imports_with_every_unit_exact() {
+    use kestrel_cli::import::kf_gins;
+    use kestrel_cli::process::config::parse;
+    let yaml = Path::new("kf-gins.yaml");
+    let i = kf_gins(KF_GINS, yaml, None).unwrap();
+    let s = parse(&i.toml, Path::new("imported.toml")).unwrap();
+    // The SI values KF-GINS uses, bit for bit: 15 mGal = 1.5e-4 m/s²
+    // (15.2957… µg, not 15), 0.027 deg/h, 4 h = 14 400 s.
+    assert_eq!(s.imu.accel_markov_sigma, 15.0 * 1e-5);
+    assert_eq!(s.p0.accel_bias.x, 15.0 * 1e-5);
+    assert_eq!(
+        s.imu.gyro_markov_sigma,
+        0.027 * std::f64::consts::PI / 180.0 / 3600.0
+    );
+    assert_eq!(
+        (s.imu.gyro_markov_tau, s.imu.accel_markov_tau),
+        (14_400.0, 14_400.0)
+    );
+    assert_eq!(s.imu.gyro_arw, 0.003 * std::f64::consts::PI / 180.0 / 60.0);
+    assert_eq!(s.lever_arm.y, -0.301);
+    assert_eq!(s.start.time, 456_300.0);
+    assert_eq!(s.covariance_interval, 0.0);
+    assert_eq!(i.warnings.len(), 2, "{:?}", i.warnings);
+    assert!(i
+        .toml
+        .contains("# NOT IMPORTED — kf-gins.yaml: imunoise.gsstd not imported"));
+    assert_eq!(
+        i.command,
+        "kestrel process --imu ./dataset/imu.txt --gnss ./dataset/gnss.txt --config process.toml \
+         --out ./dataset"
+    );
+    // What kestrel cannot express is refused, naming the key.
+    let cases = [
+        ("endtime: -1", "endtime: 457000", "endtime", "kestrel processes to the end of the IMU file: cut the file at the end time, or set endtime: -1"),
+        ("initaccbias: [ 0, 0, 0 ]", "initaccbias: [ 10, 0, 0 ]", "initaccbias", "kestrel starts its bias estimates at zero and has no scale-factor states: correct the IMU data by these values first, or set them to 0"),
+        ("arw: [0.003, 0.003, 0.003]", "arw: [0.003, 0.004, 0.003]", "imunoise.arw", "kestrel's IMU noise is the same on the three axes: found [0.003, 0.004, 0.003]"),
+        ("imudatarate: 200", "imudatarate: 200\nodometer: true", "odometer", "not a KF-GINS key kestrel knows; remove it or convert it by hand"),
+        ("antlever:  [ 0.136, -0.301, -0.184 ]", "antlever:  [ 0.136, -0.301 ]", "antlever", "expected a list of exactly 3 numbers"),
+    ];
+    for (from, to, key, msg) in cases {
+        let e = kf_gins(&KF_GINS.replace(from, to), yaml, None)
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, format!("kf-gins.yaml: key `{key}`: {msg}"));
+    }
+    let e = kf_gins("a: [1, 2\n", yaml, None).unwrap_err().to_string();
+    assert!(e.starts_with("kf-gins.yaml:"), "{e}");
+    // The binary writes the file and refuses to overwrite it.
+    let dir = tmp_dir("import");
+    std::fs::write(dir.join("kf-gins.yaml"), KF_GINS).unwrap();
+    let d = |f: &str| dir.join(f).display().to_string();
+    let out = kestrel(&[
+        "import",
+        "kf-gins",
+        &d("kf-gins.yaml"),
+        "--out",
+        &d("p.toml"),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stderr).contains("warning: "));
+    let again = kestrel(&[
+        "import",
+        "kf-gins",
+        &d("kf-gins.yaml"),
+        "--out",
+        &d("p.toml"),
+    ]);
+    assert_eq!(again.status.code(), Some(1));
+}
