@@ -98,8 +98,9 @@ fn round_trip_with(name: &str, kind: &FilterKind, seed: u64, duration: f64, odo:
     };
     for i in 0..3 {
         close(e.rms_position[i], mem.rms_position[i], "position RMS");
-        close(e.rms_velocity[i], mem.rms_velocity[i], "velocity RMS");
-        close(e.rms_attitude[i], mem.rms_attitude[i], "attitude RMS");
+        let m = e.motion.unwrap();
+        close(m.rms_velocity[i], mem.rms_velocity[i], "velocity RMS");
+        close(m.rms_attitude[i], mem.rms_attitude[i], "attitude RMS");
     }
     close(e.max_position_3d, mem.max_position, "max position");
     assert!(

@@ -826,3 +826,95 @@ fn the_odometer_in_its_own_file_and_with_position_only_gnss() {
          (--odometer), not both"
     );
 }
+
+#[test]
+fn a_position_only_reference_and_one_at_the_antenna() {
+    let dir = sim(13, 20.0);
+    // The truth as an RTKLIB .pos of a better receiver at 1 Hz, and the
+    // same epochs in the navigation format.
+    let truth = std::fs::read_to_string(dir.join("truth.nav")).unwrap();
+    let mut pos = String::from(
+        "%  GPST  latitude(deg) longitude(deg)  height(m)   Q  ns   sdn(m)   sde(m)   sdu(m)  \
+         sdne(m)  sdeu(m)  sdun(m) age(s)  ratio\n",
+    );
+    let mut nav = String::new();
+    for l in truth.lines().filter(|l| !l.starts_with('#')) {
+        let f: Vec<&str> = l.split(' ').collect();
+        let t: f64 = f[1].parse().unwrap();
+        if t > 0.0 && t.fract() == 0.0 {
+            pos += &format!(
+                "0 {} {} {} {} 1 20 0.01 0.01 0.02 0 0 0 0 0\n",
+                f[1], f[2], f[3], f[4]
+            );
+            nav += &format!("{l}\n");
+        }
+    }
+    std::fs::write(dir.join("truth.pos"), pos).unwrap();
+    std::fs::write(dir.join("truth1hz.nav"), nav).unwrap();
+    let base = std::fs::read_to_string(dir.join("process.toml")).unwrap();
+    let with = |name: &str, table: &str, truth: &str| {
+        std::fs::write(dir.join(format!("{name}.toml")), format!("{base}\n{table}")).unwrap();
+        let mut a = args(&dir, name);
+        a.truth = Some(dir.join(truth));
+        a.config = dir.join(format!("{name}.toml"));
+        process(&a).unwrap()
+    };
+    let p = with("pos", "[truth_file]\nformat = \"rtklib\"\n", "truth.pos");
+    let n = with("nav", "", "truth1hz.nav");
+    let (pe, ne) = (p.errors.unwrap(), n.errors.unwrap());
+    assert_eq!((pe.epochs, ne.epochs), (20, 20));
+    assert_eq!(
+        pe.rms_position, ne.rms_position,
+        "the same positions, the same errors"
+    );
+    assert!(pe.motion.is_none() && ne.motion.is_some());
+    let s = summary(&p);
+    assert!(
+        s.contains("(a position-only reference: no velocity or attitude errors)"),
+        "{s}"
+    );
+    let csv = std::fs::read_to_string(dir.join("pos/errors.csv")).unwrap();
+    assert!(csv.lines().nth(1).unwrap().contains(",,,,,,"), "{csv}");
+
+    // A reference at the antenna (0.25, 0.1, -1.05 m from the IMU in this
+    // scenario): the truth moved by the lever arm. Compared at the antenna
+    // it gives the errors at the IMU to within the attitude error × 1.1 m
+    // (millimetres); compared at the IMU it is a metre off vertically.
+    let settings = kestrel_cli::process::config::load(&dir.join("process.toml")).unwrap();
+    let lever = settings.lever_arm;
+    let mut moved = String::new();
+    for r in kestrel_cli::gins::NavReader::open(&dir.join("truth.nav")).unwrap() {
+        let mut r = r.unwrap();
+        r.state.pos = settings
+            .earth
+            .displace(&r.state.pos, &(r.state.att * lever));
+        kestrel_cli::gins::nav_line(r.week, &r.state, &mut moved);
+    }
+    std::fs::write(dir.join("antenna.nav"), moved).unwrap();
+    let at = |name: &str, table: &str, truth: &str| with(name, table, truth).errors.unwrap();
+    let imu = at("imu-pt", "", "truth.nav");
+    let antenna = at("ant-pt", "[truth_file]\nat = \"antenna\"\n", "antenna.nav");
+    let wrong = at("wrong-pt", "", "antenna.nav");
+    let d = (antenna.rms_position - imu.rms_position).abs().max();
+    assert!(d < 0.005, "{d}");
+    assert_eq!(wrong.epochs, imu.epochs);
+    // Compared at the wrong point, every epoch is off by the lever arm:
+    // 1.05 m in height (up is the third axis in this scenario), 0.27 m
+    // horizontally, to within the vehicle's tilt.
+    let rows = |d: &str| -> Vec<Vec<f64>> {
+        std::fs::read_to_string(dir.join(d).join("errors.csv"))
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').take(4).map(|x| x.parse().unwrap()).collect())
+            .collect()
+    };
+    for (w, i) in rows("wrong-pt").iter().zip(rows("imu-pt")) {
+        let (de, dn, du) = (w[1] - i[1], w[2] - i[2], w[3] - i[3]);
+        assert!((du + 1.05).abs() < 0.02, "{du}");
+        assert!(
+            (de.hypot(dn) - 0.25f64.hypot(0.1)).abs() < 0.03,
+            "{de} {dn}"
+        );
+    }
+}

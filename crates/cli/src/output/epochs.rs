@@ -96,7 +96,7 @@ impl<W: io::Write> EpochCsvWriter<W> {
     /// let mut w = EpochCsvWriter::with_update_column(Vec::new(), PositionAxes::NorthEastDown).unwrap();
     /// let r = EpochRecord { time: 0.5, position: Vector3::new(1.0, 0.0, 0.0),
     ///     velocity: Vector3::zeros(), attitude: Vector3::zeros(), adaptation: Default::default() };
-    /// w.write_compared(&r, false).unwrap();
+    /// w.write_compared(&r, false, false).unwrap();
     /// let text = String::from_utf8(w.finish_into_inner().unwrap()).unwrap();
     /// assert!(text.starts_with("time_s,pos_north_m,pos_east_m,pos_down_m,vel_north_mps,"));
     /// assert!(text.lines().next().unwrap().contains(",att_down_deg,update,nis,"));
@@ -118,12 +118,30 @@ impl<W: io::Write> EpochCsvWriter<W> {
     }
 
     /// Writes one row of the every-epoch layout; `update`: whether an
-    /// aiding update was made at this epoch (its columns are empty if not).
+    /// aiding update was made at this epoch (its columns are empty if not);
+    /// `position_only`: the reference has no velocity or attitude (their
+    /// columns are empty).
     ///
     /// # Errors
     /// The I/O error of writing it.
-    pub fn write_compared(&mut self, r: &EpochRecord, update: bool) -> io::Result<()> {
-        self.errors(r)?;
+    pub fn write_compared(
+        &mut self,
+        r: &EpochRecord,
+        update: bool,
+        position_only: bool,
+    ) -> io::Result<()> {
+        if position_only {
+            let p = self.axes.from_ned(&r.position);
+            self.number(r.time)?;
+            for v in p.iter() {
+                self.number(*v)?;
+            }
+            for _ in 0..6 {
+                self.text("")?;
+            }
+        } else {
+            self.errors(r)?;
+        }
         if update {
             self.text("1")?;
             self.adaptation(&r.adaptation)?;

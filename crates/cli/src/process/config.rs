@@ -78,6 +78,39 @@ struct File {
     output: Output,
     imu_file: Option<ImuFile>,
     gnss_file: Option<GnssFile>,
+    truth_file: Option<TruthFile>,
+}
+
+/// `[truth_file]`: the reference's format and where it is.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TruthFile {
+    format: Option<String>,
+    quality: Option<Vec<u8>>,
+    at: Option<String>,
+}
+
+/// The reference's format.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum TruthFormat {
+    /// The navigation format (position, velocity, attitude).
+    #[default]
+    Nav,
+    /// RTKLIB `.pos` of a better receiver: position only.
+    Rtklib {
+        /// The accepted `Q` flags.
+        quality: Vec<u8>,
+    },
+}
+
+/// How the reference is read and compared.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct TruthSettings {
+    /// Its format.
+    pub format: TruthFormat,
+    /// Whether its positions are the GNSS antenna's (else the IMU's): the
+    /// solution is then moved by the lever arm before comparing.
+    pub at_antenna: bool,
 }
 
 /// `[gnss_file]`: the GNSS file's format.
@@ -285,6 +318,8 @@ pub struct Settings {
     pub imu_format: ImuFormat,
     /// The GNSS file's format.
     pub gnss_format: GnssFormat,
+    /// The reference's format and point.
+    pub truth: TruthSettings,
 }
 
 /// Reads and validates the configuration at `path`.
@@ -614,6 +649,7 @@ impl Check<'_> {
                 None => ImuFormat::default(),
             },
             gnss_format: self.gnss_format(f.gnss_file.as_ref())?,
+            truth: self.truth(f.truth_file.as_ref())?,
         })
     }
 
@@ -654,6 +690,55 @@ impl Check<'_> {
                 format!("expected `gins` or `rtklib`, found `{other}`"),
             )),
         }
+    }
+
+    /// `[truth_file]`: `format` (`nav`, default, or `rtklib`: position
+    /// only), RTKLIB `quality`, and `at` (`imu`, default, or `antenna`).
+    fn truth(&self, t: Option<&TruthFile>) -> Result<TruthSettings, InputError> {
+        let Some(t) = t else {
+            return Ok(TruthSettings::default());
+        };
+        let format = match t.format.as_deref().unwrap_or("nav") {
+            "nav" => {
+                if t.quality.is_some() {
+                    return Err(self.err(
+                        "truth_file.quality",
+                        "only format = `rtklib` has quality flags",
+                    ));
+                }
+                TruthFormat::Nav
+            }
+            "rtklib" => {
+                let g = GnssFile {
+                    format: Some("rtklib".into()),
+                    quality: t.quality.clone(),
+                };
+                match self
+                    .gnss_format(Some(&g))
+                    .map_err(|e| e.with_key("truth_file.quality"))?
+                {
+                    GnssFormat::Rtklib { quality } => TruthFormat::Rtklib { quality },
+                    GnssFormat::Gins => TruthFormat::Nav,
+                }
+            }
+            other => {
+                return Err(self.err(
+                    "truth_file.format",
+                    format!("expected `nav` or `rtklib`, found `{other}`"),
+                ))
+            }
+        };
+        let at_antenna = match t.at.as_deref().unwrap_or("imu") {
+            "imu" => false,
+            "antenna" => true,
+            other => {
+                return Err(self.err(
+                    "truth_file.at",
+                    format!("expected `imu` or `antenna`, found `{other}`"),
+                ))
+            }
+        };
+        Ok(TruthSettings { format, at_antenna })
     }
 
     /// `[imu_file]`: the layout and units of the IMU file.

@@ -17,11 +17,13 @@ use std::path::{Path, PathBuf};
 use kestrel::nav::experiment::{Adaptation, EpochRecord, PositionAxes};
 use kestrel::nav::{Ellipsoid, Geodetic, NavError, NavState};
 
+use super::config::TruthFormat;
 use super::drift::DriftTable;
 use super::stats::Accumulator;
-use crate::gins::{NavReader, NavRecord, WEEK_SECONDS};
+use crate::gins::{NavReader, RtklibReader, WEEK_SECONDS};
 use crate::output::EpochCsvWriter;
 use crate::{CliError, InputError};
+use kestrel::nav::nalgebra::{UnitQuaternion, Vector3};
 
 /// Truth times within this many seconds of a sample are the same instant.
 const SAME_TIME: f64 = 1e-6;
@@ -29,35 +31,79 @@ const SAME_TIME: f64 = 1e-6;
 /// At most this many records are kept for the plots (each kind).
 const PLOT_RECORDS: usize = 20_000;
 
+/// A reference epoch: the state, and whether its velocity and attitude
+/// are known (`false` for a position-only reference).
+#[derive(Clone, Copy, Debug)]
+struct Reference {
+    state: NavState,
+    full: bool,
+}
+
+/// The reader of the truth file's format.
+enum TruthReader {
+    Nav(NavReader<BufReader<File>>),
+    Rtklib(RtklibReader<BufReader<File>>),
+}
+
 /// The truth file, read forward as the run goes.
 pub(crate) struct Truth {
-    reader: NavReader<BufReader<File>>,
-    next: Option<NavRecord>,
+    reader: TruthReader,
+    next: Option<Reference>,
     /// The week of the file's first line: later weeks continue its
     /// seconds of week (as the IMU and GNSS times do across a rollover).
     first_week: Option<u32>,
 }
 
 impl Truth {
-    pub(crate) fn open(path: &Path) -> Result<Self, InputError> {
+    /// The truth file at `path` in `format`; RTKLIB times in seconds of
+    /// GPS week `week0`.
+    pub(crate) fn open(path: &Path, format: &TruthFormat, week0: u32) -> Result<Self, InputError> {
         Ok(Self {
-            reader: NavReader::open(path)?,
+            reader: match format {
+                TruthFormat::Nav => TruthReader::Nav(NavReader::open(path)?),
+                TruthFormat::Rtklib { quality } => {
+                    TruthReader::Rtklib(RtklibReader::open(path, week0, quality)?)
+                }
+            },
             next: None,
             first_week: None,
         })
     }
 
-    /// The next truth state, not consumed.
-    fn peek(&mut self) -> Result<Option<NavState>, InputError> {
+    /// The next truth epoch, not consumed.
+    fn peek(&mut self) -> Result<Option<Reference>, InputError> {
         if self.next.is_none() {
-            if let Some(r) = self.reader.next() {
-                let mut r = r?;
-                let first = *self.first_week.get_or_insert(r.week);
-                r.state.time += f64::from(r.week.saturating_sub(first)) * WEEK_SECONDS;
-                self.next = Some(r);
-            }
+            self.next = match &mut self.reader {
+                TruthReader::Nav(r) => match r.next() {
+                    Some(r) => {
+                        let mut r = r?;
+                        let first = *self.first_week.get_or_insert(r.week);
+                        r.state.time += f64::from(r.week.saturating_sub(first)) * WEEK_SECONDS;
+                        Some(Reference {
+                            state: r.state,
+                            full: true,
+                        })
+                    }
+                    None => None,
+                },
+                TruthReader::Rtklib(r) => match r.next() {
+                    Some(f) => {
+                        let f = f?;
+                        Some(Reference {
+                            state: NavState {
+                                time: f.time,
+                                pos: f.pos,
+                                vel: Vector3::zeros(),
+                                att: UnitQuaternion::identity(),
+                            },
+                            full: false,
+                        })
+                    }
+                    None => None,
+                },
+            };
         }
-        Ok(self.next.map(|r| r.state))
+        Ok(self.next)
     }
 }
 
@@ -94,6 +140,8 @@ impl Thinned {
 pub(crate) struct Evaluation {
     earth: Ellipsoid,
     truth: Truth,
+    /// The GNSS antenna's lever arm when the truth is at the antenna.
+    antenna: Option<Vector3<f64>>,
     previous: Option<NavState>,
     csv: EpochCsvWriter<BufWriter<File>>,
     csv_path: PathBuf,
@@ -115,6 +163,7 @@ pub(crate) struct EvaluationSetup {
     pub earth: Ellipsoid,
     pub axes: PositionAxes,
     pub truth: Truth,
+    pub antenna: Option<Vector3<f64>>,
     pub csv_path: PathBuf,
     pub drift: DriftTable,
 }
@@ -128,6 +177,7 @@ impl Evaluation {
         Ok(Self {
             earth: s.earth,
             truth: s.truth,
+            antenna: s.antenna,
             previous: None,
             csv,
             csv_path: s.csv_path,
@@ -149,17 +199,18 @@ impl Evaluation {
         update: Option<Adaptation>,
     ) -> Result<(), CliError> {
         let t = nav.time;
-        while let Some(truth) = self.truth.peek()? {
+        while let Some(reference) = self.truth.peek()? {
+            let truth = reference.state;
             if truth.time > t + SAME_TIME {
                 break;
             }
             self.truth.next = None;
             self.first_truth.get_or_insert(truth.time);
             if truth.time >= t - SAME_TIME {
-                self.compare(nav, &truth, update)?;
+                self.compare(nav, &reference, update)?;
             } else if let Some(p) = self.previous.filter(|p| truth.time > p.time) {
                 let between = interpolate(&p, nav, truth.time);
-                self.compare(&between, &truth, None)?;
+                self.compare(&between, &reference, None)?;
             } else {
                 self.before += 1;
             }
@@ -171,11 +222,23 @@ impl Evaluation {
     fn compare(
         &mut self,
         nav: &NavState,
-        truth: &NavState,
+        reference: &Reference,
         update: Option<Adaptation>,
     ) -> Result<(), CliError> {
-        let e = NavError::between(&self.earth, nav, truth);
-        if !e.to_vector().iter().all(|v| v.is_finite()) {
+        let truth = &reference.state;
+        let mut nav = *nav;
+        if let Some(lever) = self.antenna {
+            // The solution's antenna: the lever arm turned into NED.
+            nav.pos = self.earth.displace(&nav.pos, &(nav.att * lever));
+        }
+        let mut e = NavError::between(&self.earth, &nav, truth);
+        if !reference.full {
+            e.dv = Vector3::repeat(f64::NAN);
+            e.phi = Vector3::repeat(f64::NAN);
+        }
+        let finite = e.dr.iter().all(|v| v.is_finite())
+            && (!reference.full || e.to_vector().iter().all(|v| v.is_finite()));
+        if !finite {
             return Err(CliError::Failed(format!(
                 "its error against the truth at {} s of week is not a finite number",
                 truth.time
@@ -188,15 +251,15 @@ impl Evaluation {
             attitude: e.phi,
             adaptation: update.unwrap_or_default(),
         };
-        self.all.add(&r);
+        self.all.add(&r, reference.full);
         self.drift.add(r.time, &r.position);
         self.errors.push(r);
         if update.is_some() {
-            self.aiding.add(&r);
+            self.aiding.add(&r, reference.full);
             self.updates.push(r);
         }
         self.csv
-            .write_compared(&r, update.is_some())
+            .write_compared(&r, update.is_some(), !reference.full)
             .map_err(|e| CliError::io(&self.csv_path, e))
     }
 
@@ -204,7 +267,7 @@ impl Evaluation {
     pub(crate) fn why_nothing_compared(&mut self, start: f64, end: f64) -> String {
         let first = match self.first_truth {
             Some(t) => Some(t),
-            None => self.truth.peek().ok().flatten().map(|s| s.time),
+            None => self.truth.peek().ok().flatten().map(|r| r.state.time),
         };
         match first {
             None => "no truth epoch to compare with: the file has no data lines".to_owned(),

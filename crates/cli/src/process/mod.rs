@@ -39,7 +39,7 @@ pub use config::Settings;
 pub use drift::{gap_threshold, WindowDrift, WindowKind};
 pub use outage::Outage;
 pub use sink::RESULT_CSV_HEADER;
-pub use stats::{ErrorStats, SumOfSquares};
+pub use stats::{ErrorStats, MotionStats, SumOfSquares};
 
 use dispatch::{dispatch, GnssLayout};
 use drift::DriftTable;
@@ -200,7 +200,11 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
             (Some(g), layout)
         }
     };
-    let truth = args.truth.as_deref().map(Truth::open).transpose()?;
+    let truth = args
+        .truth
+        .as_deref()
+        .map(|p| Truth::open(p, &settings.truth.format, settings.week))
+        .transpose()?;
     std::fs::create_dir_all(&args.out).map_err(|e| CliError::io(&args.out, e))?;
     refuse_overwriting_inputs(args)?;
     remove_output_links(&args.out)?;
@@ -210,6 +214,7 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
             earth: settings.earth,
             axes: settings.axes,
             truth,
+            antenna: settings.truth.at_antenna.then_some(settings.lever_arm),
             csv_path: args.out.join("errors.csv"),
             drift: DriftTable::new(
                 &args.outages,
@@ -478,17 +483,18 @@ fn write_summary_csv(path: &Path, sets: &[(&str, Option<ErrorStats>)]) -> Result
                 s.rms_position[i], s.max_position[i]
             );
         }
+        let Some(m) = &s.motion else { continue };
         for (i, a) in ["north", "east", "down"].iter().enumerate() {
             text += &format!(
                 "{head},velocity,{a},m/s,{},{}\n",
-                s.rms_velocity[i], s.max_velocity[i]
+                m.rms_velocity[i], m.max_velocity[i]
             );
         }
         for (i, a) in ["north", "east", "down"].iter().enumerate() {
             text += &format!(
                 "{head},attitude,{a},deg,{},{}\n",
-                deg(s.rms_attitude[i]),
-                deg(s.max_attitude[i])
+                deg(m.rms_attitude[i]),
+                deg(m.max_attitude[i])
             );
         }
     }
@@ -576,20 +582,25 @@ fn error_block(title: &str, e: &ErrorStats) -> String {
     let ned = ["north", "east", "down"];
     let mut s = title.to_owned();
     s += &row("position", p, "m", v(&e.rms_position), v(&e.max_position));
-    s += &row(
-        "velocity",
-        ned,
-        "m/s",
-        v(&e.rms_velocity),
-        v(&e.max_velocity),
-    );
-    s += &row(
-        "attitude",
-        ned,
-        "deg",
-        d(&e.rms_attitude),
-        d(&e.max_attitude),
-    );
+    match &e.motion {
+        Some(m) => {
+            s += &row(
+                "velocity",
+                ned,
+                "m/s",
+                v(&m.rms_velocity),
+                v(&m.max_velocity),
+            );
+            s += &row(
+                "attitude",
+                ned,
+                "deg",
+                d(&m.rms_attitude),
+                d(&m.max_attitude),
+            );
+        }
+        None => s += "  (a position-only reference: no velocity or attitude errors)\n",
+    }
     s
 }
 

@@ -18,18 +18,26 @@ pub struct ErrorStats {
     pub epochs: usize,
     /// Position RMS per axis of `axes`, m.
     pub rms_position: Vector3<f64>,
+    /// Largest |error| per position axis of `axes`, m.
+    pub max_position: Vector3<f64>,
+    /// Largest 3-D position error, m.
+    pub max_position_3d: f64,
+    /// Velocity and attitude statistics; `None` against a position-only
+    /// reference (never zeros that look like a result).
+    pub motion: Option<MotionStats>,
+}
+
+/// Velocity and attitude error statistics.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MotionStats {
     /// Velocity RMS north, east, down, m/s.
     pub rms_velocity: Vector3<f64>,
     /// Attitude RMS north, east, down, rad.
     pub rms_attitude: Vector3<f64>,
-    /// Largest |error| per position axis of `axes`, m.
-    pub max_position: Vector3<f64>,
     /// Largest |error| per velocity axis, m/s.
     pub max_velocity: Vector3<f64>,
     /// Largest |error| per attitude axis, rad.
     pub max_attitude: Vector3<f64>,
-    /// Largest 3-D position error, m.
-    pub max_position_3d: f64,
 }
 
 /// A sum of squares kept as `scale² · ssq` with `scale` the largest |x|
@@ -81,6 +89,8 @@ impl SumOfSquares {
 pub(crate) struct Accumulator {
     axes: PositionAxes,
     n: usize,
+    /// Epochs with velocity and attitude errors.
+    motion: usize,
     pos: [SumOfSquares; 3],
     vel: [SumOfSquares; 3],
     att: [SumOfSquares; 3],
@@ -95,6 +105,7 @@ impl Accumulator {
         Self {
             axes,
             n: 0,
+            motion: 0,
             pos: Default::default(),
             vel: Default::default(),
             att: Default::default(),
@@ -110,18 +121,25 @@ impl Accumulator {
         self.n
     }
 
-    pub(crate) fn add(&mut self, r: &EpochRecord) {
+    /// Adds the errors of `r`; `motion`: whether its velocity and attitude
+    /// errors are known (else only the position is added).
+    pub(crate) fn add(&mut self, r: &EpochRecord, motion: bool) {
         let p = self.axes.from_ned(&r.position);
         self.n += 1;
         self.max_3d = self.max_3d.max(r.position.norm());
         for i in 0..3 {
             self.pos[i].add(p[i]);
-            self.vel[i].add(r.velocity[i]);
-            self.att[i].add(r.attitude[i]);
         }
         self.max_pos = self.max_pos.sup(&p.abs());
-        self.max_vel = self.max_vel.sup(&r.velocity.abs());
-        self.max_att = self.max_att.sup(&r.attitude.abs());
+        if motion {
+            self.motion += 1;
+            for i in 0..3 {
+                self.vel[i].add(r.velocity[i]);
+                self.att[i].add(r.attitude[i]);
+            }
+            self.max_vel = self.max_vel.sup(&r.velocity.abs());
+            self.max_att = self.max_att.sup(&r.attitude.abs());
+        }
     }
 
     /// The statistics, `None` over no epoch (never a 0 that looks like a
@@ -130,17 +148,19 @@ impl Accumulator {
         if self.n == 0 {
             return None;
         }
-        let rms = |s: &[SumOfSquares; 3]| Vector3::from_fn(|i, _| s[i].rms(self.n));
+        let rms = |s: &[SumOfSquares; 3], n: usize| Vector3::from_fn(|i, _| s[i].rms(n));
         Some(ErrorStats {
             axes: self.axes,
             epochs: self.n,
-            rms_position: rms(&self.pos),
-            rms_velocity: rms(&self.vel),
-            rms_attitude: rms(&self.att),
+            rms_position: rms(&self.pos, self.n),
             max_position: self.max_pos,
-            max_velocity: self.max_vel,
-            max_attitude: self.max_att,
             max_position_3d: self.max_3d,
+            motion: (self.motion > 0).then(|| MotionStats {
+                rms_velocity: rms(&self.vel, self.motion),
+                rms_attitude: rms(&self.att, self.motion),
+                max_velocity: self.max_vel,
+                max_attitude: self.max_att,
+            }),
         })
     }
 }
