@@ -309,7 +309,7 @@ pub fn kf_gins(text: &str, path: &Path, out: Option<&Path>) -> Result<Imported, 
         }
     }
     let corr = noise.number_in("imunoise", "corrtime")?;
-    if !(corr > 0.0) {
+    if corr.is_nan() || corr <= 0.0 {
         return Err(noise.err_in(
             "imunoise",
             "corrtime",

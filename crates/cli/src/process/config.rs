@@ -744,8 +744,7 @@ impl Check<'_> {
     /// `[imu_file]`: the layout and units of the IMU file.
     fn imu_format(&self, m: &ImuFile) -> Result<ImuFormat, InputError> {
         let key = |k: &str| format!("imu_file.{k}");
-        let mut f = ImuFormat::default();
-        f.delimiter = match m.delimiter.as_deref().unwrap_or("whitespace") {
+        let delimiter = match m.delimiter.as_deref().unwrap_or("whitespace") {
             "whitespace" => Delimiter::Whitespace,
             "," => Delimiter::Char(','),
             ";" => Delimiter::Char(';'),
@@ -757,10 +756,14 @@ impl Check<'_> {
                 ))
             }
         };
-        f.header_lines = m.header_lines.unwrap_or(0);
         // Without a columns table the GINS columns, and no odometer column
         // unless one is named.
-        f.odometer = None;
+        let mut f = ImuFormat {
+            delimiter,
+            header_lines: m.header_lines.unwrap_or(0),
+            odometer: None,
+            ..ImuFormat::default()
+        };
         if let Some(c) = &m.columns {
             let mut all = vec![("time", c.time)];
             all.extend(c.week.map(|w| ("week", w)));

@@ -86,8 +86,8 @@ impl Simulation {
             .duration
             .map_or(traj.duration(), |d| d.min(traj.duration()));
         let rate = options.imu_rate.unwrap_or(scenario.imu_rate);
-        // `!(≤)` also refuses NaN.
-        if !(end * rate <= MAX_IMU_SAMPLES as f64) {
+        let samples = end * rate;
+        if samples.is_nan() || samples > MAX_IMU_SAMPLES as f64 {
             return Err(RunError::TooLong {
                 duration: end,
                 rate,
