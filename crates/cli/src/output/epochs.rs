@@ -220,6 +220,12 @@ impl<W: io::Write> EpochCsvWriter<W> {
     /// rather than `Display` so that tiny and huge values get an exponent
     /// instead of hundreds of zeros.
     fn number(&mut self, v: f64) -> io::Result<()> {
+        if v.is_finite() {
+            // Ryū: the same shortest round-trip digits as `{v:?}`, at about
+            // twice the speed (this is the hot loop of `process --truth`).
+            let mut buffer = ryu::Buffer::new();
+            return Ok(self.csv.write_field(buffer.format_finite(v))?);
+        }
         self.field.clear();
         let _ = write!(self.field, "{v:?}");
         Ok(self.csv.write_field(&self.field)?)
