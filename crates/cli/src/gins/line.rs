@@ -128,32 +128,15 @@ impl<R: BufRead> Lines<R> {
     /// The next non-blank line's number and text (line end removed), `None`
     /// at the end of the file.
     pub(crate) fn next_text(&mut self) -> Option<Result<(usize, &str), InputError>> {
-        if self.failed {
-            return None;
-        }
-        loop {
-            match self.read_line() {
-                Ok(false) => return None,
-                Ok(true) => {}
-                Err(e) => {
-                    self.failed = true;
-                    return Some(Err(e));
-                }
-            }
-            if !self.buf.bytes().all(|b| b.is_ascii_whitespace()) {
-                return Some(Ok((self.line, self.buf.trim_end())));
-            }
+        match self.advance()? {
+            Ok(()) => Some(Ok((self.line, self.buf.trim_end()))),
+            Err(e) => Some(Err(e)),
         }
     }
 
-    /// The file's name for errors.
-    pub(crate) fn path(&self) -> &Path {
-        &self.path
-    }
-
-    /// The next data line, `None` at the end of the file (and after an
-    /// error of the line layer).
-    pub(crate) fn next_fields(&mut self) -> Option<Result<Fields, InputError>> {
+    /// Reads up to the next non-blank line after the header lines; `None`
+    /// at the end of the file and after an error of the line layer.
+    fn advance(&mut self) -> Option<Result<(), InputError>> {
         if self.failed {
             return None;
         }
@@ -167,14 +150,27 @@ impl<R: BufRead> Lines<R> {
                 }
             }
             let header = self.selection.as_ref().map_or(0, |s| s.header_lines);
-            if self.line <= header || self.buf.bytes().all(|b| b.is_ascii_whitespace()) {
-                continue;
+            if self.line > header && !self.buf.bytes().all(|b| b.is_ascii_whitespace()) {
+                return Some(Ok(()));
             }
-            if let Some(s) = &self.selection {
-                return Some(self.parse_selected(s, self.line));
-            }
-            return Some(self.parse(self.line));
         }
+    }
+
+    /// The file's name for errors.
+    pub(crate) fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The next data line, `None` at the end of the file (and after an
+    /// error of the line layer).
+    pub(crate) fn next_fields(&mut self) -> Option<Result<Fields, InputError>> {
+        if let Err(e) = self.advance()? {
+            return Some(Err(e));
+        }
+        if let Some(s) = &self.selection {
+            return Some(self.parse_selected(s, self.line));
+        }
+        Some(self.parse(self.line))
     }
 
     /// Reads the next line into `buf` (its data part: a UTF-8 byte-order
