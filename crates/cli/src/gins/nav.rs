@@ -8,7 +8,7 @@ use std::path::Path;
 use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::{Euler, Geodetic, NavState};
 
-use super::angle::{degrees_to_radians, PositionColumns};
+use super::angle::{degrees_exact, degrees_to_radians};
 use super::line::{open, Lines};
 use super::stream::Stream;
 use crate::{CliError, InputError};
@@ -203,7 +203,7 @@ impl<W: Write> NavWriter<W> {
 ///     Euler::default());
 /// let mut line = String::new();
 /// kestrel_cli::gins::nav_line(2300, &s, &mut line);
-/// assert!(line.starts_with("2300 1.5 28.64788975654116 114.59155902616465 20 1 0 0 "));
+/// assert!(line.starts_with("2300 1.5 28.64788975654116 114.59155902616465 20.0 1.0 0.0 0.0 "));
 /// assert_eq!(line.split(' ').count(), 11);
 /// ```
 pub fn nav_line(week: u32, state: &NavState, out: &mut String) {
@@ -215,12 +215,30 @@ pub fn nav_line(week: u32, state: &NavState, out: &mut String) {
     let weeks = (state.time / WEEK_SECONDS).floor().max(0.0);
     let (week, time) = (week + weeks as u32, state.time - weeks * WEEK_SECONDS);
     // Writing into a String cannot fail.
-    let _ = writeln!(
-        out,
-        "{week} {time} {} {} {} {} {roll} {pitch} {yaw}",
-        PositionColumns(&state.pos),
+    let _ = write!(out, "{week}");
+    let p = &state.pos;
+    let columns = [
+        time,
+        degrees_exact(p.lat),
+        degrees_exact(p.lon),
+        p.h,
         v.x,
         v.y,
-        v.z
-    );
+        v.z,
+        roll,
+        pitch,
+        yaw,
+    ];
+    // Ryū: shortest round-trip digits, at about twice the speed of `{}`
+    // (a 200 Hz result is the hot loop of `process`).
+    let mut buffer = ryu::Buffer::new();
+    for x in columns {
+        out.push(' ');
+        if x.is_finite() {
+            out.push_str(buffer.format_finite(x));
+        } else {
+            let _ = write!(out, "{x}");
+        }
+    }
+    out.push('\n');
 }

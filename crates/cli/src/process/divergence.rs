@@ -19,11 +19,8 @@ pub(crate) enum Step {
 const NED: [&str; 3] = ["north", "east", "down"];
 const XYZ: [&str; 3] = ["x", "y", "z"];
 
-/// The name of component `i` of the error state of `model`.
-///
-/// ```ignore
-/// assert_eq!(state_component(ErrorModelKind::Ins15, 4), "velocity error east");
-/// ```
+/// The name of component `i` of the error state of `model`, e.g.
+/// "velocity error east (state 4)" for `Ins15`.
 pub(crate) fn state_component(model: ErrorModelKind, i: usize) -> String {
     let (block, k) = (i / 3, i % 3);
     let name = match (model, block) {

@@ -150,9 +150,11 @@ pub fn run(args: &ProcessArgs) -> Result<(), CliError> {
 ///     imu_rate: None, out: dir.clone(), force: true }).unwrap();
 /// let r = process(&ProcessArgs { imu: dir.join("imu.txt"), gnss: Some(dir.join("gnss.txt")),
 ///     odo: false, odometer: None, truth: Some(dir.join("truth.nav")), config: dir.join("process.toml"),
-///     out: dir.join("result"), outages: vec!["2:3".parse().unwrap()], no_plots: true }).unwrap();
+///     out: dir.join("result"), outages: vec!["2:4".parse().unwrap()], no_plots: true }).unwrap();
+/// // Fixes at 1 … 5 s; the half-open window drops those at 2 and 3 s.
 /// assert_eq!((r.samples, r.fixes_used, r.fixes_in_outage), (1000, 3, 2));
-/// assert_eq!(r.errors.unwrap().epochs, 3);
+/// // Compared at every truth epoch, and at the 3 aiding epochs.
+/// assert_eq!((r.errors.unwrap().epochs, r.aiding_errors.unwrap().epochs), (1000, 3));
 /// assert!(kestrel_cli::process::summary(&r).starts_with("KF: 1000 IMU samples"));
 /// ```
 pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
