@@ -58,9 +58,64 @@ pub fn epoch_columns(axes: PositionAxes) -> [&'static str; 18] {
 /// assert_eq!(text.lines().nth(1), Some("0.1,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,1,1.0,1.0,0,1.0,1.0,0.0"));
 /// ```
 pub struct EpochCsvWriter<W: io::Write> {
-    csv: csv::Writer<W>,
+    csv: Rows<W>,
     axes: PositionAxes,
     field: String,
+}
+
+/// CSV rows of fields that never need quoting (numbers, fixed names): each
+/// row is assembled in a reused buffer and written in one call.
+struct Rows<W: io::Write> {
+    out: W,
+    row: Vec<u8>,
+    fields: usize,
+}
+
+impl<W: io::Write> Rows<W> {
+    fn from_writer(out: W) -> Self {
+        Self {
+            out,
+            row: Vec::with_capacity(512),
+            fields: 0,
+        }
+    }
+
+    fn write_field(&mut self, field: &str) -> io::Result<()> {
+        debug_assert!(!field.contains([',', '"', '\n', '\r']), "{field}");
+        if self.fields > 0 {
+            self.row.push(b',');
+        }
+        self.row.extend_from_slice(field.as_bytes());
+        self.fields += 1;
+        Ok(())
+    }
+
+    fn write_record<I: IntoIterator<Item = T>, T: AsRef<str>>(
+        &mut self,
+        fields: I,
+    ) -> io::Result<()> {
+        for f in fields {
+            self.write_field(f.as_ref())?;
+        }
+        self.end_record()
+    }
+
+    fn end_record(&mut self) -> io::Result<()> {
+        self.row.push(b'\n');
+        self.out.write_all(&self.row)?;
+        self.row.clear();
+        self.fields = 0;
+        Ok(())
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.out.flush()
+    }
+
+    fn into_inner(mut self) -> io::Result<W> {
+        self.out.flush()?;
+        Ok(self.out)
+    }
 }
 
 /// The column after the attitude errors in the every-epoch layout
@@ -73,7 +128,7 @@ impl<W: io::Write> EpochCsvWriter<W> {
     /// # Errors
     /// The I/O error of writing the header.
     pub fn new(out: W, axes: PositionAxes) -> io::Result<Self> {
-        let mut csv = csv::Writer::from_writer(out);
+        let mut csv = Rows::from_writer(out);
         csv.write_record(epoch_columns(axes))?;
         Ok(Self {
             csv,
@@ -103,7 +158,7 @@ impl<W: io::Write> EpochCsvWriter<W> {
     /// assert_eq!(text.lines().nth(1), Some("0.5,1.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0,,,,,,,,"));
     /// ```
     pub fn with_update_column(out: W, axes: PositionAxes) -> io::Result<Self> {
-        let mut csv = csv::Writer::from_writer(out);
+        let mut csv = Rows::from_writer(out);
         let columns = epoch_columns(axes);
         let header = columns[..10]
             .iter()
@@ -151,7 +206,7 @@ impl<W: io::Write> EpochCsvWriter<W> {
                 self.text("")?;
             }
         }
-        Ok(self.csv.write_record(None::<&[u8]>)?)
+        self.csv.end_record()
     }
 
     /// Flushes what is buffered, keeping the writer.
@@ -195,7 +250,7 @@ impl<W: io::Write> EpochCsvWriter<W> {
     pub fn write(&mut self, r: &EpochRecord) -> io::Result<()> {
         self.errors(r)?;
         self.adaptation(&r.adaptation)?;
-        Ok(self.csv.write_record(None::<&[u8]>)?)
+        self.csv.end_record()
     }
 
     /// Flushes what is buffered.
@@ -211,9 +266,7 @@ impl<W: io::Write> EpochCsvWriter<W> {
     /// # Errors
     /// The I/O error of flushing.
     pub fn finish_into_inner(self) -> io::Result<W> {
-        self.csv
-            .into_inner()
-            .map_err(|e| io::Error::new(e.error().kind(), e.error().to_string()))
+        self.csv.into_inner()
     }
 
     /// The shortest digits that parse back to the same `f64`; `Debug`
