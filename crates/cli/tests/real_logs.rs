@@ -650,6 +650,8 @@ fn imu_files_of_other_shapes_are_read_by_configuration() {
         ("axes = [\"x\", \"x\", \"z\"]\n", "imu_file.axes", "each of x, y and z must appear once"),
         ("columns = { time = 1, gyro = [2, 3, 4], accel = [5, 6, 4] }\n", "imu_file.columns.accel", "column 4 is already the gyro column"),
         ("time = \"week-seconds\"\n", "imu_file.time", "`week-seconds` needs a columns.week"),
+        ("header_lines = 99999999999\n", "imu_file.header_lines", "expected at most 1000 header lines, found 99999999999"),
+        ("accel_unit = \"g*s\"\ng = 1e308\n", "imu_file.g", "expected the g of the accelerometer's unit in [9.7, 9.9] m/s², found 1e308"),
     ];
     for (table, key, msg) in cases {
         let e = with("bad", &format!("[imu_file]\n{table}"))
@@ -817,6 +819,21 @@ fn the_odometer_in_its_own_file_and_with_position_only_gnss() {
         with.max_position_3d < without.max_position_3d,
         "{with:?} {without:?}"
     );
+    // An empty odometer file is an error, not a run without odometer.
+    std::fs::write(dir.join("odo-empty.txt"), "# nothing\n").unwrap();
+    let mut e = args(&dir, "empty");
+    e.gnss = None;
+    e.imu = dir.join("imu7.txt");
+    e.odometer = Some(dir.join("odo-empty.txt"));
+    assert_eq!(
+        process(&e).unwrap_err().to_string(),
+        format!(
+            "{}: no odometer reading at or before the last IMU sample (an empty file, or times \
+             that are not GPS seconds of week like the IMU's)",
+            dir.join("odo-empty.txt").display()
+        )
+    );
+    assert!(!dir.join("empty/result.nav").exists());
     // Both sources at once is refused.
     c.odometer = Some(dir.join("odo.txt"));
     let e = process(&c).unwrap_err().to_string();

@@ -756,11 +756,18 @@ impl Check<'_> {
                 ))
             }
         };
+        let header_lines = m.header_lines.unwrap_or(0);
+        if header_lines > 1000 {
+            return Err(self.err(
+                &key("header_lines"),
+                format!("expected at most 1000 header lines, found {header_lines}"),
+            ));
+        }
         // Without a columns table the GINS columns, and no odometer column
         // unless one is named.
         let mut f = ImuFormat {
             delimiter,
-            header_lines: m.header_lines.unwrap_or(0),
+            header_lines,
             odometer: None,
             ..ImuFormat::default()
         };
@@ -909,7 +916,8 @@ impl Check<'_> {
                 return Err(self.err(
                     &key("g"),
                     format!(
-                        "expected the g of the accelerometer's unit in [9.7, 9.9] m/s², found {g}"
+                        "expected the g of the accelerometer's unit in [9.7, 9.9] m/s², found {}",
+                        physical::show(g)
                     ),
                 ))
             }

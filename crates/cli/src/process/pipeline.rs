@@ -57,6 +57,8 @@ pub(crate) struct OdometerFile {
     reader: OdometerReader<BufReader<File>>,
     ahead: Option<SpeedRecord>,
     latest: Option<SpeedRecord>,
+    /// Readings that became the latest (reached by the run).
+    reached: usize,
 }
 
 impl OdometerFile {
@@ -65,6 +67,7 @@ impl OdometerFile {
             reader,
             ahead: None,
             latest: None,
+            reached: 0,
         }
     }
 
@@ -78,6 +81,7 @@ impl OdometerFile {
             match self.ahead {
                 Some(r) if r.time <= t => {
                     self.latest = self.ahead.take();
+                    self.reached += 1;
                 }
                 _ => break,
             }
@@ -278,6 +282,21 @@ impl Job {
         }
     }
 
+    /// An odometer file none of whose readings the run reached is an error
+    /// (an empty file, or one whose times miss the IMU's), never a run
+    /// that silently had no odometer.
+    fn check_odometer_file(&self) -> Result<(), CliError> {
+        match &self.odometer_file {
+            Some(f) if f.reached == 0 => Err(InputError::file(
+                f.path(),
+                "no odometer reading at or before the last IMU sample (an empty file, or \
+                 times that are not GPS seconds of week like the IMU's)",
+            )
+            .into()),
+            _ => Ok(()),
+        }
+    }
+
     /// Reads and checks the GNSS lines after the last IMU sample, counting
     /// their fixes (none is used; a bad line is still an error).
     fn drain_gnss(&mut self) -> Result<(), InputError> {
@@ -324,9 +343,13 @@ where
             .into());
         }
     }
+    let imu_path = job.imu.path().to_path_buf();
     let outcome = loop {
         let Some(sample) = current else {
-            break job.drain_gnss().map_err(CliError::from);
+            break job
+                .drain_gnss()
+                .map_err(CliError::from)
+                .and_then(|()| job.check_odometer_file());
         };
         match step(
             job,
@@ -335,7 +358,7 @@ where
             &mut schedule,
             &sample,
             previous,
-            label,
+            (label, &imu_path),
             &mut gnss,
             &mut odometer,
         ) {
@@ -359,7 +382,7 @@ fn step<const N: usize, S, F, A>(
     schedule: &mut Schedule,
     sample: &ImuRecord,
     previous: (f64, Option<usize>),
-    label: &str,
+    (label, imu_path): (&str, &std::path::Path),
     gnss: &mut impl FnMut(
         &mut LooselyCoupled<f64, N, S, F, A>,
         &GnssFix,
@@ -377,9 +400,10 @@ where
     let following = job.next_imu()?;
     let t = sample.time;
     let model = job.error_model;
-    let imu_path = job.imu.path().to_path_buf();
-    let imu_line = format!("{}:{}", imu_path.display(), sample.line);
-    let diverged = |error: FilterError, step: Step, input: &str| {
+    // Messages are formatted only on failure: nothing here allocates per
+    // sample.
+    let imu_line = || format!("{}:{}", imu_path.display(), sample.line);
+    let diverged = |error: FilterError, step: Step, input: String| {
         let doing = match step {
             Step::Imu => "propagating",
             Step::Gnss(_) => "in the GNSS update",
@@ -393,39 +417,39 @@ where
     let increment = timing.increment(sample, previous.0, previous.1)?;
     engine
         .imu(&increment)
-        .map_err(|e| diverged(e, Step::Imu, &format!("IMU line {imu_line}")))?;
+        .map_err(|e| diverged(e, Step::Imu, format!("IMU line {}", imu_line())))?;
     let mut update = None;
     while let Some((fix, line)) = job.gnss_due(t, following.as_ref().map(|f| f.time))? {
         let rows = if fix.vel.is_some() { 6 } else { 3 };
-        let input = match job.gnss.as_ref() {
-            Some(g) => format!("GNSS line {}:{line}", g.path().display()),
+        let gnss_path = job.gnss.as_ref().map(GnssSource::path);
+        let input = || match gnss_path {
+            Some(p) => format!("GNSS line {}:{line}", p.display()),
             None => format!("GNSS line {line}"),
         };
-        update = Some(gnss(engine, &fix).map_err(|e| diverged(e, Step::Gnss(rows), &input))?);
+        update = Some(gnss(engine, &fix).map_err(|e| diverged(e, Step::Gnss(rows), input()))?);
     }
+    // The speed, and its line in the odometer file (`None`: the IMU file).
     let speed = match job.odometer_file.as_mut() {
-        Some(f) => f.speed_at(t)?.map(|(speed, line)| {
-            (
-                speed,
-                format!("odometer line {}:{line}", f.path().display()),
-            )
-        }),
-        None => sample
-            .odometer
-            .map(|speed| (speed, format!("odometer speed of IMU line {imu_line}"))),
+        Some(f) => f.speed_at(t)?.map(|(speed, line)| (speed, Some(line))),
+        None => sample.odometer.map(|speed| (speed, None)),
     };
-    if let (Some(rate), Some((speed, input))) = (job.odometer_rate, speed) {
+    if let (Some(rate), Some((speed, line))) = (job.odometer_rate, speed) {
         if schedule.due(t, rate) {
             let reading = OdometerReading::new(t, speed);
+            let input = || match (line, job.odometer_file.as_ref()) {
+                (Some(l), Some(f)) => format!("odometer line {}:{l}", f.path().display()),
+                _ => format!("odometer speed of IMU line {}", imu_line()),
+            };
             update =
-                Some(odometer(engine, &reading).map_err(|e| diverged(e, Step::Odometer, &input))?);
+                Some(odometer(engine, &reading).map_err(|e| diverged(e, Step::Odometer, input()))?);
         }
     }
     job.sink
         .sample(engine.solution(), update)
         .map_err(|e| match e {
             CliError::Failed(m) => CliError::Failed(format!(
-                "{label} diverged at {t} s of week after IMU line {imu_line}: {m}"
+                "{label} diverged at {t} s of week after IMU line {}: {m}",
+                imu_line()
             )),
             other => other,
         })?;
