@@ -22,8 +22,3 @@ pub use kestrel_adaptive as adaptive;
 pub use kestrel_core::*;
 pub use kestrel_models as models;
 pub use kestrel_nav as nav;
-
-/// The README's Rust examples, compiled and run as doc tests.
-#[cfg(doctest)]
-#[doc = include_str!("../README.md")]
-pub struct ReadmeDoctests;

@@ -17,9 +17,9 @@ use std::path::{Path, PathBuf};
 use clap::{Args, Subcommand};
 use yaml_rust2::{Yaml, YamlLoader};
 
-use crate::gins::invert_exact;
-use crate::process::units::{deg_per_h, ug};
 use crate::{CliError, InputError};
+use kestrel_io::gins::invert_exact;
+use kestrel_io::process::units::{deg_per_h, ug};
 
 /// Arguments of `kestrel import`.
 #[derive(Clone, Debug, Args)]

@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 
 use kestrel::nav::experiment::{Adaptation, EpochRecord, PositionAxes};
 use kestrel::nav::nalgebra::Vector3;
-use kestrel_cli::output::write_epochs_csv;
 use kestrel_cli::plot::{error_figures, error_figures_with, FigureOptions, FilterTrace};
 use kestrel_cli::CliError;
+use kestrel_io::output::write_epochs_csv;
 
 /// A fresh directory for one test.
 fn out_dir(name: &str) -> PathBuf {

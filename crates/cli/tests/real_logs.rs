@@ -10,8 +10,9 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use kestrel_cli::process::{process, summary, ProcessArgs};
+use kestrel_cli::process::{process, ProcessArgs};
 use kestrel_cli::simulate::{simulate, SimulateArgs};
+use kestrel_io::process::summary;
 
 fn sim(seed: u64, duration: f64) -> PathBuf {
     static N: AtomicUsize = AtomicUsize::new(0);
@@ -897,15 +898,15 @@ fn a_position_only_reference_and_one_at_the_antenna() {
     // scenario): the truth moved by the lever arm. Compared at the antenna
     // it gives the errors at the IMU to within the attitude error × 1.1 m
     // (millimetres); compared at the IMU it is a metre off vertically.
-    let settings = kestrel_cli::process::config::load(&dir.join("process.toml")).unwrap();
+    let settings = kestrel_io::process::config::load(&dir.join("process.toml")).unwrap();
     let lever = settings.lever_arm;
     let mut moved = String::new();
-    for r in kestrel_cli::gins::NavReader::open(&dir.join("truth.nav")).unwrap() {
+    for r in kestrel_io::gins::NavReader::open(&dir.join("truth.nav")).unwrap() {
         let mut r = r.unwrap();
         r.state.pos = settings
             .earth
             .displace(&r.state.pos, &(r.state.att * lever));
-        kestrel_cli::gins::nav_line(r.week, &r.state, &mut moved);
+        kestrel_io::gins::nav_line(r.week, &r.state, &mut moved);
     }
     std::fs::write(dir.join("antenna.nav"), moved).unwrap();
     let at = |name: &str, table: &str, truth: &str| with(name, table, truth).errors.unwrap();

@@ -4,27 +4,22 @@ use std::io::IsTerminal;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-/// Samples between two updates of the bar (keeps it off the hot path).
-const EVERY: u32 = 4096;
-
 /// A bar on stderr, hidden when stderr is not a terminal.
-pub(crate) struct Progress {
+pub(crate) struct Bar {
     bar: ProgressBar,
     start: f64,
     total: f64,
-    count: u32,
 }
 
-impl Progress {
-    /// A bar from `start` to `end` (seconds of week).
-    pub(crate) fn new(start: f64, end: f64) -> Self {
-        let total = (end - start).max(0.0);
+impl Bar {
+    /// A bar not yet started.
+    pub(crate) fn new() -> Self {
         let target = if std::io::stderr().is_terminal() {
             ProgressDrawTarget::stderr()
         } else {
             ProgressDrawTarget::hidden()
         };
-        let bar = ProgressBar::with_draw_target(Some((total * 10.0) as u64), target);
+        let bar = ProgressBar::with_draw_target(None, target);
         if let Ok(style) =
             ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {msg} ({eta} left)")
         {
@@ -32,19 +27,20 @@ impl Progress {
         }
         Self {
             bar,
-            start,
-            total,
-            count: 0,
+            start: 0.0,
+            total: 0.0,
         }
     }
+}
 
-    /// The run has reached `t`.
-    pub(crate) fn at(&mut self, t: f64) {
-        self.count += 1;
-        if self.count < EVERY {
-            return;
-        }
-        self.count = 0;
+impl kestrel_io::process::Progress for Bar {
+    fn begin(&mut self, start: f64, end: f64) {
+        self.start = start;
+        self.total = (end - start).max(0.0);
+        self.bar.set_length((self.total * 10.0) as u64);
+    }
+
+    fn reached(&mut self, t: f64) {
         let done = (t - self.start).max(0.0);
         self.bar.set_position((done * 10.0) as u64);
         if !self.bar.is_hidden() {
@@ -53,8 +49,7 @@ impl Progress {
         }
     }
 
-    /// Removes the bar.
-    pub(crate) fn finish(&self) {
+    fn finish(&mut self) {
         self.bar.finish_and_clear();
     }
 }

@@ -26,9 +26,9 @@ pub use stats::MeanStd;
 pub use table::TextTable;
 pub use window::{Window, WindowError, WindowProbe};
 
-use crate::output::write_epochs_csv;
 use crate::plot::{error_figures_with, FigureOptions, FilterTrace};
 use crate::CliError;
+use kestrel_io::output::write_epochs_csv;
 
 /// The most Monte Carlo runs `--runs` accepts.
 pub const MAX_RUNS: usize = 10_000;

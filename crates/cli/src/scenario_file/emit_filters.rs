@@ -8,7 +8,7 @@ use super::emit::{number, Writer};
 use super::emit_sections::decimal_deg;
 use super::emit_sensors::imu_errors;
 use super::units::{ACCEL, ANGLE, GYRO_RATE, RATIO, SI};
-use crate::process::filter_params::{filter_params, Param};
+use kestrel_io::process::filter_params::{filter_params, Param};
 
 pub(super) fn filter(w: &mut Writer, s: &Scenario) {
     let f = &s.filter;

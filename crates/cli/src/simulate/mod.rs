@@ -9,8 +9,8 @@ use clap::Args;
 use kestrel::nav::experiment::{RunOptions, Simulation};
 use kestrel::nav::scenario::{by_name, Scenario};
 
-use crate::gins::{GnssWriter, ImuRecord, ImuWriter, NavWriter};
 use crate::{CliError, InputError};
+use kestrel_io::gins::{GnssWriter, ImuRecord, ImuWriter, NavWriter};
 
 pub use process_config::process_config;
 

@@ -7,9 +7,9 @@ use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::scenario::{ErrorModelKind, FilterKind, Scenario};
 use kestrel::nav::{Ellipsoid, NavState};
 
-use crate::gins::{degrees_exact, invert_exact};
-use crate::process::filter_params::{filter_params, Param};
-use crate::process::units::{deg_per_h, deg_per_sqrt_h, m_s_per_sqrt_h, ug};
+use kestrel_io::gins::{degrees_exact, invert_exact};
+use kestrel_io::process::filter_params::{filter_params, Param};
+use kestrel_io::process::units::{deg_per_h, deg_per_sqrt_h, m_s_per_sqrt_h, ug};
 
 /// `x` in a unit whose conversion to SI is `to_si` (by the factor `per`),
 /// chosen so that the conversion gives back exactly `x` where possible.
@@ -68,7 +68,7 @@ fn filter_lines(kind: &FilterKind) -> Option<String> {
 /// let s = kestrel::nav::scenario::by_name("002").unwrap();
 /// let truth = s.trajectory().unwrap().initial_state();
 /// let text = process_config(&s, &s.initial_state(&truth), &s.filters[1]);
-/// let set = kestrel_cli::process::config::parse(&text, "p.toml".as_ref()).unwrap();
+/// let set = kestrel_io::process::config::parse(&text, "p.toml".as_ref()).unwrap();
 /// // The filter's noise model; the turn-on biases go to P0 and scale
 /// // factors are not states, so `process` has no keys for them.
 /// let m = s.filter.imu_model;
@@ -89,7 +89,7 @@ pub fn process_config(scenario: &Scenario, start: &NavState, kind: &FilterKind) 
     let _ = writeln!(w, "# {}", sc.description);
     let _ = writeln!(
         w,
-        "# Every key is explained in crates/cli/configs/process-example.toml."
+        "# Every key is explained in crates/io/configs/process-example.toml."
     );
     let _ = writeln!(w, "earth = \"{}\"\n", earth_name(&sc.earth));
 

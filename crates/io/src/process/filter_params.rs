@@ -1,0 +1,74 @@
+//! The parameters of a filter kind in the order both configuration files
+//! (scenario files and `process` configurations) write them: one list, so
+//! the two writers cannot disagree on what a kind carries.
+
+use kestrel::nav::scenario::{FadeBlock, FilterKind};
+
+/// One parameter of a filter kind.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Param {
+    /// A number under its key.
+    Number(&'static str, f64),
+    /// The fuzzy R window length (`window`).
+    Window(usize),
+    /// The states the fade scales (`fade_states`).
+    Fade(FadeBlock),
+}
+
+/// The parameters of `kind`, in file order.
+///
+/// ```
+/// use kestrel::nav::scenario::FilterKind;
+/// use kestrel_io::process::filter_params::filter_params;
+/// assert!(filter_params(&FilterKind::Standard).is_empty());
+/// ```
+pub fn filter_params(kind: &FilterKind) -> Vec<Param> {
+    use Param::{Fade, Number};
+    match *kind {
+        FilterKind::Standard => vec![],
+        FilterKind::SageHusaFading {
+            forgetting,
+            reserve,
+            lambda_max,
+            fade_states,
+        } => vec![
+            Number("forgetting", forgetting),
+            Number("reserve", reserve),
+            Number("lambda_max", lambda_max),
+            Fade(fade_states),
+        ],
+        FilterKind::ImprovedAdaptive {
+            forgetting,
+            reserve,
+            lambda_max,
+            significance,
+            fade_states,
+        } => vec![
+            Number("forgetting", forgetting),
+            Number("reserve", reserve),
+            Number("lambda_max", lambda_max),
+            Number("significance", significance),
+            Fade(fade_states),
+        ],
+        FilterKind::FederatedUkf { alpha, beta, kappa }
+        | FilterKind::FederatedSrUkf { alpha, beta, kappa } => vec![
+            Number("alpha", alpha),
+            Number("beta", beta),
+            Number("kappa", kappa),
+        ],
+        FilterKind::IctErekf { significance } => vec![Number("significance", significance)],
+        FilterKind::MaxThreshold { threshold } => vec![Number("threshold", threshold)],
+        FilterKind::FuzzyAdaptive { window } => vec![Param::Window(window)],
+        FilterKind::StrongTrackingFading {
+            rho,
+            softening,
+            lambda_max,
+            fade_states,
+        } => vec![
+            Number("rho", rho),
+            Number("softening", softening),
+            Number("lambda_max", lambda_max),
+            Fade(fade_states),
+        ],
+    }
+}

@@ -1,0 +1,123 @@
+//! The processing configuration: the shipped example, and the parameter
+//! ranges against the filters'.
+
+use std::path::Path;
+
+use kestrel::nav::scenario::FilterKind;
+
+#[test]
+fn the_shipped_example_configuration_is_valid() {
+    use kestrel_io::process::config::{load, GnssNoise};
+    use kestrel_io::process::units::{deg_per_h, deg_per_sqrt_h, m_s_per_sqrt_h, ug};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/process-example.toml");
+    let s = load(&path).unwrap();
+    assert_eq!((s.week, s.start.time), (2300, 356_400.0));
+    assert_eq!(s.start.pos.lat, 30.5278f64.to_radians());
+    assert_eq!(s.kind, FilterKind::IctErekf { significance: 0.05 });
+    assert_eq!(s.imu.gyro_arw, deg_per_sqrt_h(0.2));
+    assert_eq!(s.imu.accel_vrw, m_s_per_sqrt_h(0.1));
+    assert_eq!(s.p0.gyro_bias.x, deg_per_h(10.0));
+    assert_eq!(s.p0.accel_bias.z, ug(500.0));
+    assert_eq!(s.imu.gyro_markov_tau, f64::INFINITY);
+    assert_eq!(s.lever_arm.z, -0.8);
+    assert!(matches!(s.gnss_noise, GnssNoise::Fixed { .. }));
+    assert!(s.odometer.is_none());
+    assert_eq!(s.output_interval, 0.0);
+}
+
+/// Every filter parameter the configuration takes has exactly the range its
+/// filter accepts: a value is refused by the file if and only if building
+/// the filter with it fails.
+#[test]
+fn filter_parameter_ranges_equal_the_filters_ranges() {
+    use kestrel::nav::experiment::build_filter;
+    use kestrel_io::process::config::parse;
+    let base = "[initial]\ntime = 0\nposition = [30, 114, 20]\nattitude = [0, 0, 0]\n\
+                [initial.std]\nattitude = [1, 1, 1]\nvelocity = [1, 1, 1]\nposition = [1, 1, 1]\n";
+    let values = [
+        "-1.0", "0.0", "0.005", "0.01", "0.05", "0.15", "0.2", "0.97", "1.0", "1.5", "100.0",
+        "inf", "nan",
+    ];
+    let params = [
+        ("ict-erekf", "significance"),
+        ("improved-adaptive", "significance"),
+        ("improved-adaptive", "forgetting"),
+        ("improved-adaptive", "reserve"),
+        ("improved-adaptive", "lambda_max"),
+        ("sage-husa-fading", "forgetting"),
+        ("sage-husa-fading", "reserve"),
+        ("sage-husa-fading", "lambda_max"),
+        ("fading", "rho"),
+        ("fading", "softening"),
+        ("fading", "lambda_max"),
+    ];
+    let mut refused = 0;
+    for (kind, key) in params {
+        for v in values {
+            let text = format!("{base}[filter]\nkind = \"{kind}\"\n{key} = {v}\n");
+            let parsed = parse(&text, "p.toml".as_ref());
+            // The same kind with the parameter set directly in the library.
+            let x: f64 = v.parse().unwrap();
+            let direct = with_param(kind, key, x);
+            let built = build_filter::<6, _>(&direct, Probe).is_ok();
+            assert_eq!(parsed.is_ok(), built, "{kind} {key} = {v}");
+            if let Err(e) = parsed {
+                refused += 1;
+                let e = e.to_string();
+                assert!(
+                    e.starts_with(&format!("p.toml: key `filter.{key}`: expected ")),
+                    "{e}"
+                );
+            }
+        }
+    }
+    // Some values of every parameter are refused, most are accepted.
+    assert!(refused > 30 && refused < 100, "{refused}");
+}
+
+/// `kind` with its defaults and `key = x`.
+fn with_param(kind: &str, key: &str, x: f64) -> FilterKind {
+    use kestrel::nav::scenario::FadeBlock;
+    let p = |k: &str, d: f64| if k == key { x } else { d };
+    match kind {
+        "ict-erekf" => FilterKind::IctErekf {
+            significance: p("significance", 0.05),
+        },
+        "improved-adaptive" => FilterKind::ImprovedAdaptive {
+            forgetting: p("forgetting", 0.97),
+            reserve: p("reserve", 1.0),
+            lambda_max: p("lambda_max", 10.0),
+            significance: p("significance", 0.05),
+            fade_states: FadeBlock::All,
+        },
+        "sage-husa-fading" => FilterKind::SageHusaFading {
+            forgetting: p("forgetting", 0.97),
+            reserve: p("reserve", 1.0),
+            lambda_max: p("lambda_max", 10.0),
+            fade_states: FadeBlock::All,
+        },
+        _ => FilterKind::StrongTrackingFading {
+            rho: p("rho", 0.95),
+            softening: p("softening", 1.0),
+            lambda_max: p("lambda_max", f64::INFINITY),
+            fade_states: FadeBlock::All,
+        },
+    }
+}
+
+/// A filter loop that only builds the filter.
+struct Probe;
+
+impl kestrel::nav::experiment::FilterLoop<6> for Probe {
+    type Output = ();
+    fn odometer_model(&self) -> bool {
+        false
+    }
+    fn gnss<A>(self, _: A, _: kestrel::nav::scenario::FadeBlock)
+    where
+        A: kestrel::adapter::PriorAdapter<f64>
+            + kestrel::adapter::NoiseAdapter<f64, 6, Report: kestrel::nav::experiment::Describe>,
+    {
+    }
+    fn odometer<P: kestrel::nav::experiment::OdometerProcessing>(self, _: P) {}
+}
