@@ -77,8 +77,10 @@ pub trait NoiseAdapter<T: Real, const M: usize>: PriorAdapter<T> {
     /// is returned in [`UpdateReport::adapters`](crate::UpdateReport::adapters).
     type Report: Copy + Default + core::fmt::Debug;
 
-    /// `true` only for adapters that never change anything (`()` and tuples
-    /// of such). Lets the covariance form use sequential scalar updates.
+    /// `true` only for adapters that never change anything and need no
+    /// call (`()` and tuples of such). The covariance form then skips the
+    /// update hooks entirely: sequential scalar updates for a diagonal `R`,
+    /// a batch update without the adapter round otherwise.
     const IS_IDENTITY: bool = false;
 
     /// Runs before the gain is computed.

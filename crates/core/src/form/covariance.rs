@@ -1,12 +1,13 @@
 use nalgebra::{SMatrix, SVector};
 
-use super::outcome::{adapt_checked, joseph_gain};
+use super::checked_noise::CheckedNoise;
+use super::outcome::{adapt_checked, joseph_gain, not_pd};
 use super::pending::PendingCovariance;
 use super::{sequential, FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::contract::{check_covariance, check_diagonal, check_noise_cached};
 use crate::error::ensure_finite;
-use crate::linalg::{mirror_lower, sandwich, sandwich_transposed};
+use crate::linalg::{cholesky, mirror_lower, sandwich, sandwich_transposed, solve_lower};
 use crate::{
     FilterError, LinearizedMeasurement, LinearizedProcess, Quantity, Real, StateSpace, UpdateReport,
 };
@@ -34,6 +35,8 @@ use crate::{
 pub struct CovarianceForm<T: Real, const N: usize> {
     cov: PendingCovariance<T, N>,
     sequential: bool,
+    /// The last dense `R` and its factor.
+    noise: CheckedNoise<T, N>,
 }
 
 impl<T: Real, const N: usize> CovarianceForm<T, N> {
@@ -42,6 +45,7 @@ impl<T: Real, const N: usize> CovarianceForm<T, N> {
         let mut form = Self {
             cov: PendingCovariance::new(SMatrix::zeros()),
             sequential: true,
+            noise: CheckedNoise::new(),
         };
         form.set_covariance(p0)?;
         Ok(form)
@@ -111,7 +115,10 @@ impl<T: Real, const N: usize, P: LinearizedProcess<T, N>> PredictForm<T, N, P>
         ensure_finite(&phi, Quantity::Transition)?;
         let x_new = model.propagate(x, dt);
         ensure_finite(&x_new, Quantity::PropagatedState)?;
-        let propagated = sandwich(&phi, &self.cov.prior(T::one()));
+        let propagated = match self.cov.committed() {
+            Some(p) => sandwich(&phi, p),
+            None => sandwich(&phi, &self.cov.prior(T::one())),
+        };
         ensure_finite(&propagated, Quantity::PropagatedCovariance)?;
 
         let mut step = PriorStep::new(dt);
@@ -143,7 +150,7 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             check_diagonal(&r, Quantity::MeasurementNoise)?;
             None
         } else {
-            Some(check_covariance(&r, Quantity::MeasurementNoise)?)
+            Some(self.noise.check(&r, Quantity::MeasurementNoise)?)
         };
         mirror_lower(&mut r);
         let z_hat = model.predict(x);
@@ -174,6 +181,10 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
                 sequential: true,
                 adapters: A::Report::default(),
             });
+        }
+
+        if A::IS_IDENTITY {
+            return self.update_unadapted(x, nu, r, r_factor, &h, &prior, space);
         }
 
         // H P⁻ (= (P⁻ Hᵀ)ᵀ) and H P⁻ Hᵀ, one triangle; with the split, H P⁻
@@ -223,5 +234,50 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             &mut done.adapters,
         );
         Ok(done.accepted(nu, c, &gain.factor, total_fade))
+    }
+}
+
+impl<T: Real, const N: usize> CovarianceForm<T, N> {
+    /// The batch update without an adapter: the general path with every
+    /// adapter step left out (nothing to adapt, nothing to copy into a
+    /// [`GainStep`](crate::adapter::GainStep)); equal to it to rounding, as
+    /// a test checks.
+    #[allow(clippy::too_many_arguments)]
+    fn update_unadapted<const M: usize, R: Default, S: StateSpace<T, N>>(
+        &mut self,
+        x: &mut SVector<T, N>,
+        nu: SVector<T, M>,
+        r: SMatrix<T, M, M>,
+        r_factor: Option<SMatrix<T, M, M>>,
+        h: &SMatrix<T, M, N>,
+        prior: &SMatrix<T, N, N>,
+        space: &S,
+    ) -> Result<UpdateReport<T, M, R>, FilterError> {
+        let hp = h * prior;
+        let hph = sandwich_transposed(&hp, h);
+        let c = hph + r;
+        let l = cholesky(&c).map_err(|e| not_pd(e.index))?;
+        let mut white = nu;
+        solve_lower(&l, &mut white);
+        let nis = white.norm_squared();
+        let gain = joseph_gain(prior, &hp, &hph, &r, r_factor.as_ref(), &c, Some(&l))?;
+        let x_new = space.add(x, &(gain.k * nu));
+        ensure_finite(&x_new, Quantity::UpdatedState)?;
+        *x = x_new;
+        let fade = self.cov.total_fade(T::one());
+        self.cov.commit(gain.covariance);
+        Ok(UpdateReport {
+            innovation: nu,
+            innovation_used: nu,
+            nominal_innovation_covariance: c,
+            innovation_covariance: c,
+            noise: r,
+            nis,
+            adapted_nis: nis,
+            fade,
+            rejected: false,
+            sequential: false,
+            adapters: R::default(),
+        })
     }
 }

@@ -132,11 +132,12 @@ impl<const N: usize> FadeStates<N> {
         p: &SMatrix<T, N, N>,
         lambda: T,
     ) -> SMatrix<T, N, N> {
-        if self.all {
-            return *p * lambda;
-        }
+        // Unfaded (the common case): no pass over `p` at all.
         if lambda == T::one() {
             return *p;
+        }
+        if self.all {
+            return *p * lambda;
         }
         let root = lambda.sqrt();
         SMatrix::from_fn(|i, j| match (self.mask[i], self.mask[j]) {

@@ -3,6 +3,7 @@
 //! process noise apart until the next update (or predict), so an adapter can
 //! fade the propagated part before `Q` is added.
 
+mod checked_noise;
 mod covariance;
 mod fade_states;
 mod outcome;

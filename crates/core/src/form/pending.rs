@@ -56,7 +56,12 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
     /// an extra fade `extra` on top of the pending one.
     pub fn prior(&self, extra: T) -> SMatrix<T, N, N> {
         if self.pending {
-            self.states.scale_symmetric(&self.p, self.fade * extra) + self.q
+            let lambda = self.fade * extra;
+            if lambda == T::one() {
+                self.p + self.q
+            } else {
+                self.states.scale_symmetric(&self.p, lambda) + self.q
+            }
         } else if extra == T::one() {
             self.p
         } else {
@@ -65,6 +70,11 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
     }
 
     /// The fade applied to the propagated part with an extra fade `extra`.
+    /// The posterior itself, when no prediction is pending (no copy).
+    pub fn committed(&self) -> Option<&SMatrix<T, N, N>> {
+        (!self.pending).then_some(&self.p)
+    }
+
     pub fn total_fade(&self, extra: T) -> T {
         if self.pending {
             self.fade * extra

@@ -1,5 +1,6 @@
 use nalgebra::{SMatrix, SVector};
 
+use super::checked_noise::CheckedNoise;
 use super::outcome::{adapt, not_pd};
 use super::unscented::effective_jacobian;
 use super::{FadeStates, Form, PredictForm, UpdateForm};
@@ -68,6 +69,10 @@ pub struct SquareRootForm<T: Real, const N: usize> {
     time_update: TimeUpdate,
     /// The states a fade scales.
     states: FadeStates<N>,
+    /// The last `Q` and its factor.
+    process_noise: CheckedNoise<T, N>,
+    /// The last `R` and its factor.
+    measurement_noise: CheckedNoise<T, N>,
 }
 
 impl<T: Real, const N: usize> SquareRootForm<T, N> {
@@ -89,6 +94,8 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
             weights,
             time_update: TimeUpdate::default(),
             states: FadeStates::all(),
+            process_noise: CheckedNoise::new(),
+            measurement_noise: CheckedNoise::new(),
         };
         form.set_covariance(p0)?;
         Ok(form)
@@ -263,7 +270,7 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Sq
     ) -> Result<(), FilterError> {
         let s = self.prior_factor(T::one());
         let mut q = model.noise(x, dt);
-        let sq = check_covariance(&q, Quantity::ProcessNoise)?;
+        let sq = self.process_noise.check(&q, Quantity::ProcessNoise)?;
         mirror_lower(&mut q);
         let mut propagated = sigma::propagate(x, &s, &self.weights, model, dt, space)?;
 
@@ -324,7 +331,9 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
     ) -> Result<UpdateReport<T, M, A::Report>, FilterError> {
         ensure_finite(z, Quantity::Measurement)?;
         let mut r = model.noise();
-        let sr = check_covariance(&r, Quantity::MeasurementNoise)?;
+        let sr = self
+            .measurement_noise
+            .check(&r, Quantity::MeasurementNoise)?;
         mirror_lower(&mut r);
         let w = self.weights;
 

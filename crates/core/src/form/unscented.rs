@@ -1,5 +1,6 @@
 use nalgebra::{SMatrix, SVector};
 
+use super::checked_noise::CheckedNoise;
 use super::outcome::{adapt_checked, joseph_gain};
 use super::pending::PendingCovariance;
 use super::{FadeStates, Form, PredictForm, UpdateForm};
@@ -37,6 +38,8 @@ pub struct UnscentedForm<T: Real, const N: usize> {
     cov: PendingCovariance<T, N>,
     params: MerweParams<T>,
     weights: SigmaWeights<T>,
+    /// The last `R` and its factor.
+    noise: CheckedNoise<T, N>,
 }
 
 impl<T: Real, const N: usize> UnscentedForm<T, N> {
@@ -52,6 +55,7 @@ impl<T: Real, const N: usize> UnscentedForm<T, N> {
             cov: PendingCovariance::new(SMatrix::zeros()),
             params,
             weights,
+            noise: CheckedNoise::new(),
         };
         form.set_covariance(p0)?;
         Ok(form)
@@ -167,7 +171,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
     ) -> Result<UpdateReport<T, M, A::Report>, FilterError> {
         ensure_finite(z, Quantity::Measurement)?;
         let mut r = model.noise();
-        let r_factor = check_covariance(&r, Quantity::MeasurementNoise)?;
+        let r_factor = self.noise.check(&r, Quantity::MeasurementNoise)?;
         mirror_lower(&mut r);
         let w = self.weights;
 

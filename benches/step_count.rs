@@ -1,0 +1,116 @@
+//! A fixed number of predict + update steps of one filter on the model of
+//! the `step` benchmark, for instruction counts that do not depend on the
+//! machine's load:
+//!
+//! ```sh
+//! cargo bench --bench step_count --no-run          # prints the binary's path
+//! valgrind --tool=callgrind --callgrind-out-file=/dev/null BINARY kf 15 2000
+//! valgrind --tool=callgrind --callgrind-out-file=/dev/null BINARY kf 15 0
+//! ```
+//!
+//! The difference of the two totals ("Collected") divided by 2000 is the
+//! count per step. Filters: `kf`, `kf_diag`, `ukf`, `srukf`, `nalgebra`,
+//! `adskalman`, `kf_f32`, `ukf_f32`, `srukf_f32` (f32 at N = 15 only);
+//! sizes 2, 4, 6, 9, 12, 15, 18, 24, 32 with `M = min(N, 6)`. Without
+//! arguments (as `cargo bench` runs it) it prints this usage.
+
+mod common;
+
+use std::hint::black_box;
+
+use common::adskalman_kf;
+use common::hand::HandKf;
+use common::model::Model;
+use kestrel::form::{PredictForm, UpdateForm};
+use kestrel::models::{LinearMeasurement, LinearProcess};
+use kestrel::nalgebra::{Const, DimMin, SMatrix};
+use kestrel::{Ekf, Filter, Real, SrUkf, Ukf};
+
+fn model<T: Real, const N: usize, const M: usize>() -> Model<T, N, M> {
+    Model::<f64, N, M>::generate(0x6b65_7374_7265_6c00 + N as u64).to()
+}
+
+/// `steps` predict + update steps of `f`.
+fn run<T, const N: usize, const M: usize, F>(
+    mut f: Filter<T, N, F>,
+    m: &Model<T, N, M>,
+    r: SMatrix<T, M, M>,
+    steps: usize,
+) where
+    T: Real,
+    F: PredictForm<T, N, LinearProcess<T, N>> + UpdateForm<T, N, LinearMeasurement<T, N, M>, M>,
+{
+    let process = LinearProcess::new(m.phi, m.q);
+    let measurement = LinearMeasurement::new(m.h, r);
+    for _ in 0..steps {
+        f.predict(&process, T::one()).expect("predict");
+        black_box(f.update(&measurement, black_box(&m.z)).expect("update"));
+    }
+}
+
+fn steps_of<T: Real, const N: usize, const M: usize>(filter: &str, steps: usize) -> bool
+where
+    Const<M>: DimMin<Const<M>, Output = Const<M>>,
+{
+    let m = model::<T, N, M>();
+    match filter {
+        "kf" => run(Ekf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
+        "kf_diag" => run(Ekf::new(m.x0, m.p0).unwrap(), &m, m.r_diag, steps),
+        "ukf" => run(Ukf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
+        "srukf" => run(SrUkf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
+        "nalgebra" => {
+            let mut f = HandKf::new(m.x0, m.p0);
+            for _ in 0..steps {
+                assert!(f.step(&m, &m.r, black_box(&m.z)));
+            }
+        }
+        "adskalman" => {
+            let (process, measurement) = adskalman_kf::models(&m, &m.r);
+            let kf = ::adskalman::KalmanFilterNoControl::<T, Const<N>, Const<M>>::new(
+                &process,
+                &measurement,
+            );
+            let mut est = ::adskalman::StateAndCovariance::<T, Const<N>>::new(m.x0, m.p0);
+            for _ in 0..steps {
+                est = kf.step(&est, black_box(&m.z)).expect("adskalman step");
+            }
+            black_box(est);
+        }
+        _ => return false,
+    }
+    true
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let parsed = match args.as_slice() {
+        [filter, n, steps] => n
+            .parse::<usize>()
+            .ok()
+            .zip(steps.parse::<usize>().ok())
+            .map(|(n, steps)| (filter.as_str(), n, steps)),
+        _ => None,
+    };
+    let Some((filter, n, steps)) = parsed else {
+        eprintln!("usage: step_count FILTER N STEPS (see the source's header)");
+        return;
+    };
+    let known = match (filter.strip_suffix("_f32"), n) {
+        (Some(f), 15) => steps_of::<f32, 15, 6>(f, steps),
+        (Some(_), _) => false,
+        (None, 2) => steps_of::<f64, 2, 2>(filter, steps),
+        (None, 4) => steps_of::<f64, 4, 4>(filter, steps),
+        (None, 6) => steps_of::<f64, 6, 6>(filter, steps),
+        (None, 9) => steps_of::<f64, 9, 6>(filter, steps),
+        (None, 12) => steps_of::<f64, 12, 6>(filter, steps),
+        (None, 15) => steps_of::<f64, 15, 6>(filter, steps),
+        (None, 18) => steps_of::<f64, 18, 6>(filter, steps),
+        (None, 24) => steps_of::<f64, 24, 6>(filter, steps),
+        (None, 32) => steps_of::<f64, 32, 6>(filter, steps),
+        _ => false,
+    };
+    if !known {
+        eprintln!("unknown filter or size: {filter} {n}");
+        std::process::exit(2);
+    }
+}
