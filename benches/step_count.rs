@@ -9,7 +9,8 @@
 //! ```
 //!
 //! The difference of the two totals ("Collected") divided by 2000 is the
-//! count per step. Filters: `kf`, `kf_diag`, `ukf`, `srukf`, `nalgebra`,
+//! count per step. Filters: `kf`, `kf_diag`, `kf_improved` (paper 000's
+//! `ImprovedAdaptive`), `ukf`, `srukf`, `nalgebra`,
 //! `adskalman`, `kf_f32`, `ukf_f32`, `srukf_f32` (f32 at N = 15 only);
 //! sizes 2, 4, 6, 9, 12, 15, 18, 24, 32 with `M = min(N, 6)`. Without
 //! arguments (as `cargo bench` runs it) it prints this usage.
@@ -56,6 +57,17 @@ where
     match filter {
         "kf" => run(Ekf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
         "kf_diag" => run(Ekf::new(m.x0, m.p0).unwrap(), &m, m.r_diag, steps),
+        "kf_improved" => {
+            let adapter = kestrel::adaptive::ImprovedAdaptive::paper000().unwrap();
+            let f = Ekf::new(m.x0, m.p0).unwrap().with_adapter(adapter);
+            let process = LinearProcess::new(m.phi, m.q);
+            let measurement = LinearMeasurement::new(m.h, m.r);
+            let mut f = f;
+            for _ in 0..steps {
+                f.predict(&process, T::one()).expect("predict");
+                black_box(f.update(&measurement, black_box(&m.z)).expect("update"));
+            }
+        }
         "ukf" => run(Ukf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
         "srukf" => run(SrUkf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
         "nalgebra" => {
