@@ -7,7 +7,10 @@ use super::{sequential, FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::contract::{check_covariance, check_diagonal, check_noise_cached};
 use crate::error::ensure_finite;
-use crate::linalg::{cholesky, mirror_lower, sandwich, sandwich_transposed, solve_lower};
+use crate::linalg::{
+    cholesky, joseph_factored_noise, mirror_lower, sandwich, sandwich_transposed, solve_lower,
+    solve_lower_transpose,
+};
 use crate::{
     FilterError, LinearizedMeasurement, LinearizedProcess, Quantity, Real, StateSpace, UpdateReport,
 };
@@ -183,7 +186,9 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             });
         }
 
-        if A::IS_IDENTITY {
+        // Without an adapter R is dense here (a diagonal one went the
+        // sequential way), so its factor is at hand.
+        if let (true, Some(r_factor)) = (A::IS_IDENTITY, r_factor.as_ref()) {
             return self.update_unadapted(x, nu, r, r_factor, &h, &prior, space);
         }
 
@@ -248,7 +253,7 @@ impl<T: Real, const N: usize> CovarianceForm<T, N> {
         x: &mut SVector<T, N>,
         nu: SVector<T, M>,
         r: SMatrix<T, M, M>,
-        r_factor: Option<SMatrix<T, M, M>>,
+        r_factor: &SMatrix<T, M, M>,
         h: &SMatrix<T, M, N>,
         prior: &SMatrix<T, N, N>,
         space: &S,
@@ -260,12 +265,19 @@ impl<T: Real, const N: usize> CovarianceForm<T, N> {
         let mut white = nu;
         solve_lower(&l, &mut white);
         let nis = white.norm_squared();
-        let gain = joseph_gain(prior, &hp, &hph, &r, r_factor.as_ref(), &c, Some(&l))?;
-        let x_new = space.add(x, &(gain.k * nu));
+        // The steps of `joseph_gain` with the factors at hand, and nothing
+        // returned by value that is not needed.
+        let mut kt = hp;
+        solve_lower(&l, &mut kt);
+        solve_lower_transpose(&l, &mut kt);
+        let k = kt.transpose();
+        let covariance = joseph_factored_noise(prior, &k, &hp.transpose(), &hph, r_factor);
+        ensure_finite(&covariance, Quantity::UpdatedCovariance)?;
+        let x_new = space.add(x, &(k * nu));
         ensure_finite(&x_new, Quantity::UpdatedState)?;
         *x = x_new;
         let fade = self.cov.total_fade(T::one());
-        self.cov.commit(gain.covariance);
+        self.cov.commit(covariance);
         Ok(UpdateReport {
             innovation: nu,
             innovation_used: nu,
