@@ -1,7 +1,48 @@
+use core::cell::OnceCell;
+use core::fmt;
+
 use nalgebra::{SMatrix, SVector};
 
 use crate::linalg::{cholesky, mirror_lower, solve_lower};
 use crate::Real;
+
+/// The two parts of `H P⁻ Hᵀ`: `(H Φ P Φᵀ Hᵀ, H Q Hᵀ)`.
+type Parts<T, const M: usize> = (SMatrix<T, M, M>, SMatrix<T, M, M>);
+
+/// Where the split of `H P⁻ Hᵀ` comes from.
+#[derive(Clone)]
+enum Split<'a, T: Real, const M: usize> {
+    /// Not asked for.
+    Absent,
+    /// Given when the view was built.
+    Ready(Parts<T, M>),
+    /// Computed by the form the first time an adapter asks (a fading
+    /// adapter whose test passes never does), then kept.
+    Lazy {
+        compute: &'a dyn Fn() -> Parts<T, M>,
+        parts: OnceCell<Parts<T, M>>,
+    },
+}
+
+impl<T: Real, const M: usize> Split<'_, T, M> {
+    fn get(&self) -> Option<&Parts<T, M>> {
+        match self {
+            Self::Absent => None,
+            Self::Ready(parts) => Some(parts),
+            Self::Lazy { compute, parts } => Some(parts.get_or_init(compute)),
+        }
+    }
+}
+
+impl<T: Real, const M: usize> fmt::Debug for Split<'_, T, M> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Absent => f.write_str("Absent"),
+            Self::Ready(parts) => f.debug_tuple("Ready").field(parts).finish(),
+            Self::Lazy { parts, .. } => f.debug_tuple("Lazy").field(&parts.get()).finish(),
+        }
+    }
+}
 
 /// The measurement-space view of one update that adapters read and change
 /// before the gain is computed.
@@ -35,12 +76,15 @@ use crate::Real;
 /// step.scale_innovation(0.5);
 /// assert_eq!(step.innovation()[0], 1.5);
 /// ```
+///
+/// The lifetime is that of the form's data the split may be computed from
+/// on demand; adapters write `&mut GainStep<T, M>` and never name it.
 #[derive(Debug, Clone)]
-pub struct GainStep<T: Real, const M: usize> {
+pub struct GainStep<'a, T: Real, const M: usize> {
     raw_innovation: SVector<T, M>,
     innovation: SVector<T, M>,
     nominal_predicted: SMatrix<T, M, M>,
-    split: Option<(SMatrix<T, M, M>, SMatrix<T, M, M>)>,
+    split: Split<'a, T, M>,
     nominal_noise: SMatrix<T, M, M>,
     noise: SMatrix<T, M, M>,
     fade: T,
@@ -51,7 +95,7 @@ pub struct GainStep<T: Real, const M: usize> {
     factor: Option<SMatrix<T, M, M>>,
 }
 
-impl<T: Real, const M: usize> GainStep<T, M> {
+impl<T: Real, const M: usize> GainStep<'static, T, M> {
     /// Builds the view from the innovation `ν`, the predicted measurement
     /// covariance `H P⁻ Hᵀ`, optionally its split into (propagated, process
     /// noise) parts, and `R`. Returns `None` if `H P⁻ Hᵀ + R` is not positive
@@ -82,7 +126,10 @@ impl<T: Real, const M: usize> GainStep<T, M> {
             raw_innovation: innovation,
             innovation,
             nominal_predicted: predicted,
-            split,
+            split: match split {
+                Some(parts) => Split::Ready(parts),
+                None => Split::Absent,
+            },
             nominal_noise: noise,
             noise,
             fade: T::one(),
@@ -91,6 +138,49 @@ impl<T: Real, const M: usize> GainStep<T, M> {
             rejected: false,
             covariance: predicted + noise,
             factor: Some(factor),
+        }
+    }
+}
+
+impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
+    /// Like [`with_factor`](GainStep::with_factor), the split computed by
+    /// `split` only if an adapter asks for it.
+    pub(crate) fn with_lazy_split(
+        innovation: SVector<T, M>,
+        predicted: SMatrix<T, M, M>,
+        split: &'a dyn Fn() -> Parts<T, M>,
+        noise: SMatrix<T, M, M>,
+        factor: SMatrix<T, M, M>,
+    ) -> Self {
+        let step = GainStep::with_factor(innovation, predicted, None, noise, factor);
+        GainStep {
+            split: Split::Lazy {
+                compute: split,
+                parts: OnceCell::new(),
+            },
+            ..step
+        }
+    }
+
+    /// The same view without the source of a split not yet computed: what
+    /// the form reads after the adapters (which no longer need the split).
+    pub(crate) fn detached(self) -> GainStep<'static, T, M> {
+        GainStep {
+            raw_innovation: self.raw_innovation,
+            innovation: self.innovation,
+            nominal_predicted: self.nominal_predicted,
+            split: match self.split {
+                Split::Absent | Split::Lazy { .. } => Split::Absent,
+                Split::Ready(parts) => Split::Ready(parts),
+            },
+            nominal_noise: self.nominal_noise,
+            noise: self.noise,
+            fade: self.fade,
+            innovation_scale: self.innovation_scale,
+            noise_changed: self.noise_changed,
+            rejected: self.rejected,
+            covariance: self.covariance,
+            factor: self.factor,
         }
     }
 
@@ -116,7 +206,7 @@ impl<T: Real, const M: usize> GainStep<T, M> {
 
     /// `(H Φ P Φᵀ Hᵀ, H Q Hᵀ)` at fade 1, when the adapter asked for the split.
     pub fn split(&self) -> Option<(&SMatrix<T, M, M>, &SMatrix<T, M, M>)> {
-        self.split.as_ref().map(|(a, b)| (a, b))
+        self.split.get().map(|(a, b)| (a, b))
     }
 
     /// `H P⁻ Hᵀ` with the current fade (without `R`).
@@ -124,7 +214,7 @@ impl<T: Real, const M: usize> GainStep<T, M> {
         if self.fade == T::one() {
             return self.nominal_predicted;
         }
-        match &self.split {
+        match self.split.get() {
             Some((prop, _)) => self.nominal_predicted + prop * (self.fade - T::one()),
             None => self.nominal_predicted * self.fade,
         }
@@ -228,5 +318,47 @@ impl<T: Real, const M: usize> GainStep<T, M> {
     fn refresh(&mut self) {
         self.covariance = self.predicted_covariance() + self.noise;
         self.factor = cholesky(&self.covariance).ok();
+    }
+}
+
+#[cfg(test)]
+mod lazy_split_tests {
+    use core::cell::Cell;
+
+    use nalgebra::{Matrix1, Vector1};
+
+    use super::*;
+
+    #[test]
+    fn the_split_is_computed_once_and_only_when_asked() {
+        let calls = Cell::new(0);
+        let parts = || {
+            calls.set(calls.get() + 1);
+            (Matrix1::new(3.0), Matrix1::new(1.0))
+        };
+        fn build<'a>(parts: &'a dyn Fn() -> Parts<f64, 1>) -> GainStep<'a, f64, 1> {
+            let factor = Matrix1::new(3.0); // √(4 + 5)
+            GainStep::with_lazy_split(
+                Vector1::new(3.0),
+                Matrix1::new(4.0),
+                parts,
+                Matrix1::new(5.0),
+                factor,
+            )
+        }
+        // Not asked: never computed.
+        let step = build(&parts);
+        assert_eq!(step.mahalanobis(), Some(1.0));
+        drop(step.detached());
+        assert_eq!(calls.get(), 0);
+        // A fade needs the propagated part: computed once, and the result is
+        // that of the split given up front (the type's own example).
+        let mut step = build(&parts);
+        step.fade(2.0);
+        assert_eq!(step.innovation_covariance()[0], 12.0);
+        assert_eq!(step.split().map(|(p, q)| (p[0], q[0])), Some((3.0, 1.0)));
+        step.set_noise(Matrix1::new(10.0));
+        assert_eq!(step.innovation_covariance()[0], 17.0);
+        assert_eq!(calls.get(), 1);
     }
 }

@@ -1,7 +1,7 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
-use super::outcome::{adapt_checked, joseph_gain, not_pd};
+use super::outcome::{adapt_checked, adapt_checked_lazy, joseph_gain, not_pd};
 use super::pending::PendingCovariance;
 use super::{sequential, FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
@@ -192,16 +192,18 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             return self.update_unadapted(x, nu, r, r_factor, &h, &prior, space);
         }
 
-        // H P⁻ (= (P⁻ Hᵀ)ᵀ) and H P⁻ Hᵀ, one triangle; with the split, H P⁻
-        // is assembled from H Φ P Φᵀ and H Q, which the split needs anyway.
-        let (hp, split) = if A::NEEDS_SPLIT {
-            self.cov.measured(&h)
-        } else {
-            (h * prior, None)
-        };
+        // H P⁻ (= (P⁻ Hᵀ)ᵀ) and H P⁻ Hᵀ, one triangle. A fading adapter's
+        // split into propagated and process-noise parts is computed only if
+        // it asks (its divergence test failed).
+        let hp = h * prior;
         let hph = sandwich_transposed(&hp, &h);
-        let split = A::NEEDS_SPLIT.then(|| split.unwrap_or((hph, SMatrix::zeros())));
-        let mut done = adapt_checked(adapter, nu, hph, split, r)?;
+        let mut done = if A::NEEDS_SPLIT {
+            let cov = &self.cov;
+            let parts = || cov.split(Some(&h), &hph);
+            adapt_checked_lazy(adapter, nu, hph, &parts, r)?
+        } else {
+            adapt_checked(adapter, nu, hph, None, r)?
+        };
         let fade = done.step.fade_factor();
         if done.step.is_rejected() {
             self.cov.commit(prior);

@@ -70,7 +70,7 @@ pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
 
 /// The state of an update after the adapters' `before_gain`.
 pub(crate) struct AdaptedStep<T: Real, const M: usize, R> {
-    pub step: GainStep<T, M>,
+    pub step: GainStep<'static, T, M>,
     pub nominal_c: SMatrix<T, M, M>,
     pub nis: T,
     pub adapters: R,
@@ -98,17 +98,31 @@ pub(crate) fn adapt_checked<T: Real, const M: usize, A: NoiseAdapter<T, M>>(
     Ok(adapt(adapter, step))
 }
 
+/// [`adapt_checked`] with the split computed by `split` only if an adapter
+/// asks for it.
+pub(crate) fn adapt_checked_lazy<T: Real, const M: usize, A: NoiseAdapter<T, M>>(
+    adapter: &mut A,
+    innovation: SVector<T, M>,
+    predicted: SMatrix<T, M, M>,
+    split: &dyn Fn() -> (SMatrix<T, M, M>, SMatrix<T, M, M>),
+    noise: SMatrix<T, M, M>,
+) -> Result<AdaptedStep<T, M, A::Report>, FilterError> {
+    let factor = cholesky(&(predicted + noise)).map_err(|e| not_pd(e.index))?;
+    let step = GainStep::with_lazy_split(innovation, predicted, split, noise, factor);
+    Ok(adapt(adapter, step))
+}
+
 /// Runs the adapters on a freshly built view.
 pub(crate) fn adapt<T: Real, const M: usize, A: NoiseAdapter<T, M>>(
     adapter: &mut A,
-    mut step: GainStep<T, M>,
+    mut step: GainStep<'_, T, M>,
 ) -> AdaptedStep<T, M, A::Report> {
     let nominal_c = *step.innovation_covariance();
     let nis = step.mahalanobis().unwrap_or_else(T::zero);
     let mut adapters = A::Report::default();
     adapter.before_gain(&mut step, &mut adapters);
     AdaptedStep {
-        step,
+        step: step.detached(),
         nominal_c,
         nis,
         adapters,

@@ -3,7 +3,7 @@
 use nalgebra::SMatrix;
 
 use super::FadeStates;
-use crate::linalg::{sandwich, sandwich_transposed};
+use crate::linalg::sandwich;
 use crate::Real;
 
 /// The covariance of the covariance and unscented forms: after a predict it
@@ -118,34 +118,6 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
             ),
             _ => (*predicted, SMatrix::zeros()),
         }
-    }
-
-    /// `H P⁻` for the measurement matrix `h` and, while a prediction is
-    /// pending, the split `(λ H Φ P Φᵀ Hᵀ, H Q Hᵀ)`, from the products
-    /// `H Φ P Φᵀ` and `H Q`: one `M×N×N` product more than `H P⁻` alone,
-    /// where [`split`](Self::split) costs two. Without a pending prediction
-    /// the split is `None` (all of `H P Hᵀ` is propagated).
-    #[allow(clippy::type_complexity)]
-    pub fn measured<const M: usize>(
-        &self,
-        h: &SMatrix<T, M, N>,
-    ) -> (
-        SMatrix<T, M, N>,
-        Option<(SMatrix<T, M, M>, SMatrix<T, M, M>)>,
-    ) {
-        if !self.pending {
-            return (h * self.p, None);
-        }
-        let hq = h * self.q;
-        let (hp, propagated) = if self.states.is_all() {
-            let hp_propagated = h * self.p;
-            let hp = hp_propagated * self.fade + hq;
-            (hp, sandwich_transposed(&hp_propagated, h) * self.fade)
-        } else {
-            let hp_propagated = h * self.states.scale_symmetric(&self.p, self.fade);
-            (hp_propagated + hq, sandwich_transposed(&hp_propagated, h))
-        };
-        (hp, Some((propagated, sandwich_transposed(&hq, h))))
     }
 }
 
