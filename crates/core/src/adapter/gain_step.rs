@@ -349,7 +349,8 @@ mod lazy_split_tests {
         // Not asked: never computed.
         let step = build(&parts);
         assert_eq!(step.mahalanobis(), Some(1.0));
-        drop(step.detached());
+        // Detached after the adapters: the source is gone, nothing computed.
+        assert!(step.detached().split().is_none());
         assert_eq!(calls.get(), 0);
         // A fade needs the propagated part: computed once, and the result is
         // that of the split given up front (the type's own example).
