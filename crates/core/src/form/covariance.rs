@@ -1,7 +1,7 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
-use super::outcome::{adapt_checked, adapt_checked_lazy, joseph_gain, not_pd};
+use super::outcome::{adapt_checked, adapt_checked_lazy, joseph_gain, kalman_gain, not_pd};
 use super::pending::PendingCovariance;
 use super::{sequential, FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
@@ -9,7 +9,6 @@ use crate::contract::{check_covariance, check_diagonal, check_noise_cached};
 use crate::error::ensure_finite;
 use crate::linalg::{
     cholesky, joseph_factored_noise, mirror_lower, sandwich, sandwich_transposed, solve_lower,
-    solve_lower_transpose,
 };
 use crate::{
     FilterError, LinearizedMeasurement, LinearizedProcess, Quantity, Real, StateSpace, UpdateReport,
@@ -269,10 +268,7 @@ impl<T: Real, const N: usize> CovarianceForm<T, N> {
         let nis = white.norm_squared();
         // The steps of `joseph_gain` with the factors at hand, and nothing
         // returned by value that is not needed.
-        let mut kt = hp;
-        solve_lower(&l, &mut kt);
-        solve_lower_transpose(&l, &mut kt);
-        let k = kt.transpose();
+        let k = kalman_gain(&l, &hp);
         let covariance = joseph_factored_noise(prior, &k, &hp.transpose(), &hph, r_factor);
         ensure_finite(&covariance, Quantity::UpdatedCovariance)?;
         let x_new = space.add(x, &(k * nu));

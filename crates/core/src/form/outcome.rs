@@ -21,6 +21,19 @@ pub(crate) struct Gain<T: Real, const N: usize, const M: usize> {
     pub factor: SMatrix<T, M, M>,
 }
 
+/// `K = B C⁻¹` from the lower Cholesky factor `L` of `C` and `Bᵀ`:
+/// `Kᵀ = L⁻ᵀ L⁻¹ Bᵀ`, two triangular solves.
+#[inline]
+pub(crate) fn kalman_gain<T: Real, const N: usize, const M: usize>(
+    factor: &SMatrix<T, M, M>,
+    cross_t: &SMatrix<T, M, N>,
+) -> SMatrix<T, N, M> {
+    let mut kt = *cross_t;
+    solve_lower(factor, &mut kt);
+    solve_lower_transpose(factor, &mut kt);
+    kt.transpose()
+}
+
 /// The gain `K = B C⁻¹` (two triangular solves on `Bᵀ`) and the expanded
 /// Joseph update of `prior`, for the cross covariance `B = P⁻ Hᵀ` (or `P_xz`),
 /// given transposed, the predicted measurement covariance `predicted`
@@ -47,10 +60,7 @@ pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
         Some(l) => *l,
         None => cholesky(c).map_err(|e| not_pd(e.index))?,
     };
-    let mut kt = *cross_t;
-    solve_lower(&factor, &mut kt);
-    solve_lower_transpose(&factor, &mut kt);
-    let k = kt.transpose();
+    let k = kalman_gain(&factor, cross_t);
     let b = cross_t.transpose();
     let covariance = match noise_factor {
         Some(l) => joseph_factored_noise(prior, &k, &b, predicted, l),
