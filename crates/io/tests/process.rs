@@ -92,3 +92,28 @@ fn the_callers_output_names_are_guarded_like_the_runs_own() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_callers_output_name_must_stay_inside_the_output_folder() {
+    let dir = out("escape");
+    for bad in [
+        "../plot.png",
+        "/tmp/plot.png",
+        "sub/plot.png",
+        "..",
+        ".",
+        "",
+    ] {
+        let mut inputs = Inputs::new(data("imu.txt"), data("process.toml"), &dir);
+        inputs.also_written = vec!["fine.png".into(), bad.into()];
+        let e = process(&inputs, &mut kestrel_io::process::Silent)
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            format!("also_written: `{bad}` is not a plain file name (no folders, `.` or `..`)")
+        );
+    }
+    // Refused before anything is written.
+    assert!(!dir.exists());
+}

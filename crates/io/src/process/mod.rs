@@ -89,7 +89,8 @@ pub struct Inputs {
     pub outages: Vec<Outage>,
     /// File names the caller writes into `out` after the run (plots, say):
     /// checked against the inputs and freed of symbolic links like the
-    /// run's own outputs.
+    /// run's own outputs. Plain names only: one with a folder, `.` or `..`
+    /// is an error.
     pub also_written: Vec<String>,
 }
 
@@ -252,6 +253,18 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
         .as_deref()
         .map(|p| Truth::open(p, &settings.truth.format, settings.week))
         .transpose()?;
+    // A caller's name is a file in `out`, never a path out of it.
+    if let Some(bad) = inputs.also_written.iter().find(|n| {
+        let mut parts = Path::new(n.as_str()).components();
+        !matches!(
+            (parts.next(), parts.next()),
+            (Some(std::path::Component::Normal(_)), None)
+        )
+    }) {
+        return Err(Error::Failed(format!(
+            "also_written: `{bad}` is not a plain file name (no folders, `.` or `..`)"
+        )));
+    }
     std::fs::create_dir_all(&inputs.out).map_err(|e| Error::io(&inputs.out, e))?;
     let names = output_names(&inputs.also_written);
     refuse_overwriting_inputs(inputs, &names)?;
