@@ -254,3 +254,40 @@ fn no_heap_use_with_adapter_tuple_f64() {
 fn no_heap_use_with_adapter_tuple_f32() {
     every_form_with_adapter_tuple::<f32>();
 }
+
+/// The RTS record and backward pass in caller storage: thirty recorded
+/// predict / update epochs and the smoothing of all of them, armed, in
+/// `f32` and `f64`.
+fn smoother_run<T: Real>() {
+    use kestrel::smoother::{RtsEpoch, RtsRecord, Smoothed};
+    let (process, sensor) = models::<T>();
+    let zs: [SVector<T, 2>; 30] =
+        core::array::from_fn(|k| Vector2::new(0.3 * k as f64, 1.0 - 0.2 * k as f64).cast());
+    let mut filter = Ekf::<T, 4>::new(x0(), p0()).expect("finite");
+    let mut storage = [RtsEpoch::<T, 4>::default(); 31];
+    let mut out = [Smoothed::<T, 4>::default(); 31];
+    let (result, calls) = heap_calls(|| {
+        let mut record = RtsRecord::new(&mut storage);
+        record.start(&filter)?;
+        for z in &zs {
+            record.predict(&mut filter, &process, lit(0.1))?;
+            black_box(filter.update(&sensor, z)?);
+            record.observe(&filter)?;
+        }
+        record.smooth(&mut out)?;
+        Ok::<usize, kestrel::smoother::SmootherError>(record.len())
+    });
+    assert_eq!(result, Ok(31));
+    assert_eq!(calls, 0, "{calls} heap calls");
+    assert_ne!(out[0].state, storage[0].posterior_state);
+}
+
+#[test]
+fn no_heap_use_in_the_smoother_f64() {
+    smoother_run::<f64>();
+}
+
+#[test]
+fn no_heap_use_in_the_smoother_f32() {
+    smoother_run::<f32>();
+}

@@ -28,7 +28,8 @@ pub enum Quantity {
     /// [`ProcessModel::propagate`](crate::ProcessModel::propagate) (for a
     /// sigma point in the unscented forms).
     PropagatedState,
-    /// The propagated covariance `Φ P Φᵀ` (overflow).
+    /// The propagated covariance `Φ P Φᵀ` (overflow), or the recorded prior
+    /// covariance `P⁻` the RTS smoother must factor.
     PropagatedCovariance,
     /// The measurement vector `z` given to `update` (or the innovation
     /// computed from it).
@@ -51,6 +52,10 @@ pub enum Quantity {
     UpdatedCovariance,
     /// A covariance given to a utility (e.g. a Gaussian to sample from).
     Covariance,
+    /// A state computed by the RTS smoother's backward pass.
+    SmoothedState,
+    /// A covariance computed by the RTS smoother's backward pass.
+    SmoothedCovariance,
 }
 
 impl Quantity {
@@ -65,6 +70,7 @@ impl Quantity {
                 | Quantity::Measurement
                 | Quantity::PredictedMeasurement
                 | Quantity::UpdatedState
+                | Quantity::SmoothedState
         )
     }
 
@@ -93,6 +99,8 @@ impl fmt::Display for Quantity {
             Quantity::UpdatedState => "updated state",
             Quantity::UpdatedCovariance => "updated covariance",
             Quantity::Covariance => "covariance",
+            Quantity::SmoothedState => "smoothed state",
+            Quantity::SmoothedCovariance => "smoothed covariance",
         })
     }
 }

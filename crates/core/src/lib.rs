@@ -12,6 +12,8 @@
 //!   (unscented), [`SrUkf`] (square-root unscented). They are all
 //!   [`Filter`]`<T, N, Form, Adapter>`.
 //! - Add noise adapters ([`adapter`]) as a tuple, run in order; `()` is none.
+//! - [`smoother`]: the Rauch–Tung–Striebel smoother over a recorded forward
+//!   pass of the covariance form, in caller-provided storage.
 //! - [`Filter::update`] returns an [`UpdateReport`] (innovation, its
 //!   covariance, NIS, what the adapters did) or a typed [`FilterError`]; on
 //!   error the filter is unchanged and never holds NaN.
@@ -58,6 +60,7 @@ mod model;
 pub mod real;
 mod report;
 pub mod sigma;
+pub mod smoother;
 mod state_space;
 
 pub use error::{FilterError, Quantity};
