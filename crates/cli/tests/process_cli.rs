@@ -48,6 +48,7 @@ fn args(dir: &Path, odo: bool) -> ProcessArgs {
         out: dir.join("result"),
         outages: Vec::new(),
         no_plots: true,
+        smooth: false,
     }
 }
 

@@ -42,6 +42,7 @@ fn args(dir: &Path, out: &str) -> ProcessArgs {
         out: dir.join(out),
         outages: Vec::new(),
         no_plots: true,
+        smooth: false,
     }
 }
 

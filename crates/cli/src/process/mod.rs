@@ -52,6 +52,11 @@ pub struct ProcessArgs {
     /// Do not draw the error plots.
     #[arg(long)]
     pub no_plots: bool,
+    /// Also smooth the run (Rauch-Tung-Striebel over the closed-loop error
+    /// state): smoothed.nav, smoothed.csv, smoothed_std.csv and, with
+    /// --truth, errors_smoothed.csv; the plots show both solutions.
+    #[arg(long)]
+    pub smooth: bool,
 }
 
 /// Runs `kestrel process` and prints its summary.
@@ -95,15 +100,22 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
             .iter()
             .flat_map(|stem| [format!("{stem}.png"), format!("{stem}.svg")])
             .collect(),
+        smooth: args.smooth,
     };
     let mut bar = progress::Bar::new();
     let run = kestrel_io::process::process(&inputs, &mut bar)?;
     let mut report = run.report;
     if let (Some(traces), false) = (run.traces, args.no_plots) {
-        let errors = [FilterTrace {
+        let mut errors = vec![FilterTrace {
             label: report.filter,
             records: &traces.every,
         }];
+        if report.smoothed.is_some() {
+            errors.push(FilterTrace {
+                label: "smoothed",
+                records: &traces.smoothed,
+            });
+        }
         let aiding = [FilterTrace {
             label: report.filter,
             records: &traces.aiding,

@@ -14,7 +14,7 @@ use kestrel::nav::measurement::{GnssAntenna, GnssFix, Odometer};
 use kestrel::nav::odometer::{InsOdometer16, ScaleFactorProcess};
 use kestrel::nav::scenario::{ErrorModelKind, FadeBlock};
 use kestrel::nav::Strapdown;
-use kestrel::{Ekf, FilterError};
+use kestrel::{Ekf, FilterError, LinearizedProcess};
 
 use super::config::{OdometerSettings, Settings};
 use super::pipeline::{drive, Job};
@@ -126,6 +126,7 @@ impl Files<'_, '_> {
     ) -> Result<(), Error>
     where
         S: ErrorSystem<N>,
+        S::Process: LinearizedProcess<f64, N>,
         A: PriorAdapter<f64>,
         CovarianceForm<f64, N>: PredictForm<f64, N, S::Process>,
         Engine<N, S, A>: AidedEngine<N, M>,
@@ -133,6 +134,9 @@ impl Files<'_, '_> {
     {
         let gnss = gnss_aiding(self.s);
         let mut engine = engine(self.s, system, ekf(self.s, adapter, fade)?);
+        if self.job.smoother.is_some() {
+            engine.record_epochs();
+        }
         drive(
             self.job,
             &mut engine,
@@ -144,7 +148,8 @@ impl Files<'_, '_> {
                     valid: "absent: this filter has no odometer error model",
                 })
             },
-        )
+        )?;
+        smooth(self.job, &mut engine)
     }
 }
 
@@ -214,9 +219,12 @@ fn odometer<P: OdometerProcessing>(
     let scale = ScaleFactorProcess::new(scale_tau, o.scale_sigma, s.p0.odometer_scale);
     let system = InsOdometer16::new(s.imu, scale);
     let mut engine = engine(s, system, ekf::<16, _>(s, (), FadeBlock::All)?);
+    if job.smoother.is_some() {
+        engine.record_epochs();
+    }
     let gnss = gnss_aiding(s);
     // Position-only fixes update the position, fixes with velocity both.
-    if layout == GnssLayout::Position {
+    let driven = if layout == GnssLayout::Position {
         drive(
             job,
             &mut engine,
@@ -230,5 +238,36 @@ fn odometer<P: OdometerProcessing>(
             |e, f| FixUpdate::<6>::fix(&gnss, e, f),
             |e, r| aid.update(e, r),
         )
+    };
+    driven?;
+    smooth(job, &mut engine)
+}
+
+/// With `--smooth`: the backward pass and the smoothed output, after a
+/// successful forward run (the report goes into the job).
+fn smooth<const N: usize, S, A>(
+    job: &mut Job<'_>,
+    engine: &mut Engine<N, S, A>,
+) -> Result<(), Error>
+where
+    S: ErrorSystem<N>,
+    A: PriorAdapter<f64>,
+    CovarianceForm<f64, N>: PredictForm<f64, N, S::Process>,
+{
+    let Some(record) = job.smoother.take() else {
+        return Ok(());
+    };
+    if engine.recording_overrun() > 0 {
+        return Err(Error::Failed(format!(
+            "internal error: {} covariance epochs were not recorded for the smoother",
+            engine.recording_overrun()
+        )));
     }
+    let last = engine
+        .finish_epochs()
+        .ok_or_else(|| Error::Failed("internal error: the smoother recorded nothing".into()))?;
+    let (report, traces) = record.finish::<N, S>(last)?;
+    job.smoothed = Some(report);
+    job.smoothed_traces = traces;
+    Ok(())
 }

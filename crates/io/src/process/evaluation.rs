@@ -18,12 +18,13 @@ use kestrel::nav::experiment::{Adaptation, EpochRecord, PositionAxes};
 use kestrel::nav::{Ellipsoid, Geodetic, NavError, NavState};
 
 use super::config::TruthFormat;
+use super::consistency::Consistency;
 use super::drift::DriftTable;
 use super::stats::Accumulator;
 use crate::gins::{NavReader, RtklibReader, WEEK_SECONDS};
 use crate::output::EpochCsvWriter;
 use crate::{Error, InputError};
-use kestrel::nav::nalgebra::{UnitQuaternion, Vector3};
+use kestrel::nav::nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
 /// Truth times within this many seconds of a sample are the same instant.
 const SAME_TIME: f64 = 1e-6;
@@ -109,15 +110,25 @@ impl Truth {
 
 /// Records kept for the plots: every `stride`-th, the stride doubling
 /// whenever the store is full, so memory stays bounded.
-#[derive(Debug, Default)]
-pub(crate) struct Thinned {
-    pub records: Vec<EpochRecord>,
+#[derive(Debug)]
+pub(crate) struct Thinned<R = EpochRecord> {
+    pub records: Vec<R>,
     stride: usize,
     seen: usize,
 }
 
-impl Thinned {
-    fn push(&mut self, r: EpochRecord) {
+impl<R> Default for Thinned<R> {
+    fn default() -> Self {
+        Self {
+            records: Vec::new(),
+            stride: 1,
+            seen: 0,
+        }
+    }
+}
+
+impl<R> Thinned<R> {
+    fn push(&mut self, r: R) {
         self.stride = self.stride.max(1);
         if self.seen.is_multiple_of(self.stride) {
             if self.records.len() == PLOT_RECORDS {
@@ -143,6 +154,13 @@ pub(crate) struct Evaluation {
     /// The GNSS antenna's lever arm when the truth is at the antenna.
     antenna: Option<Vector3<f64>>,
     previous: Option<NavState>,
+    /// The position covariance (NED, m²) at the previous sample.
+    previous_covariance: Option<Matrix3<f64>>,
+    /// The position NEES over the compared epochs (when the caller gives
+    /// covariances).
+    pub consistency: Consistency,
+    /// The NEES at the compared epochs, thinned for the plots.
+    pub nees: Thinned<(f64, f64)>,
     csv: EpochCsvWriter<BufWriter<File>>,
     csv_path: PathBuf,
     /// Over every compared epoch, and over the aiding epochs only.
@@ -179,6 +197,9 @@ impl Evaluation {
             truth: s.truth,
             antenna: s.antenna,
             previous: None,
+            previous_covariance: None,
+            consistency: Consistency::default(),
+            nees: Thinned::default(),
             csv,
             csv_path: s.csv_path,
             all: Accumulator::new(s.axes),
@@ -197,6 +218,7 @@ impl Evaluation {
         &mut self,
         nav: &NavState,
         update: Option<Adaptation>,
+        covariance: Option<&Matrix3<f64>>,
     ) -> Result<(), Error> {
         let t = nav.time;
         while let Some(reference) = self.truth.peek()? {
@@ -207,16 +229,33 @@ impl Evaluation {
             self.truth.next = None;
             self.first_truth.get_or_insert(truth.time);
             if truth.time >= t - SAME_TIME {
-                self.compare(nav, &reference, update)?;
+                let dr = self.compare(nav, &reference, update)?;
+                self.check(truth.time, &dr, covariance);
             } else if let Some(p) = self.previous.filter(|p| truth.time > p.time) {
                 let between = interpolate(&p, nav, truth.time);
-                self.compare(&between, &reference, None)?;
+                let dr = self.compare(&between, &reference, None)?;
+                let w = (truth.time - p.time) / (t - p.time);
+                let cov = match (self.previous_covariance, covariance) {
+                    (Some(a), Some(b)) => Some(a + (b - a) * w),
+                    _ => None,
+                };
+                self.check(truth.time, &dr, cov.as_ref());
             } else {
                 self.before += 1;
             }
         }
         self.previous = Some(*nav);
+        self.previous_covariance = covariance.copied();
         Ok(())
+    }
+
+    /// The NEES of the position error `dr` (NED) at `t` with covariance
+    /// `p`, if there is one.
+    fn check(&mut self, t: f64, dr: &Vector3<f64>, p: Option<&Matrix3<f64>>) {
+        let Some(nees) = p.and_then(|p| self.consistency.add(dr, p)) else {
+            return;
+        };
+        self.nees.push((t, nees));
     }
 
     fn compare(
@@ -224,7 +263,7 @@ impl Evaluation {
         nav: &NavState,
         reference: &Reference,
         update: Option<Adaptation>,
-    ) -> Result<(), Error> {
+    ) -> Result<Vector3<f64>, Error> {
         let truth = &reference.state;
         let mut nav = *nav;
         if let Some(lever) = self.antenna {
@@ -260,7 +299,13 @@ impl Evaluation {
         }
         self.csv
             .write_compared(&r, update.is_some(), !reference.full)
-            .map_err(|e| Error::io(&self.csv_path, e))
+            .map_err(|e| Error::io(&self.csv_path, e))?;
+        Ok(e.dr)
+    }
+
+    /// The error file's name.
+    pub(crate) fn csv_path(&self) -> &Path {
+        &self.csv_path
     }
 
     /// Why no epoch was compared in a run from `start` to `end` (s of week).

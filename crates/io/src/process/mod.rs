@@ -12,6 +12,7 @@
 //! `kestrel simulate` gives the same errors as the in-memory run.
 
 pub mod config;
+mod consistency;
 mod dispatch;
 mod divergence;
 mod drift;
@@ -22,6 +23,7 @@ mod pipeline;
 mod progress;
 mod schedule;
 mod sink;
+mod smooth;
 mod stats;
 pub mod timing;
 pub mod units;
@@ -35,10 +37,12 @@ use crate::gins::{last_time, ImuReader, OdometerReader};
 use crate::{Error, InputError};
 
 pub use config::Settings;
+pub use consistency::{Consistency, NEES_BAND_3DOF};
 pub use drift::{gap_threshold, WindowDrift, WindowKind};
 pub use outage::Outage;
 pub use progress::{Progress, Silent};
 pub use sink::RESULT_CSV_HEADER;
+pub use smooth::SmoothedReport;
 pub use stats::{ErrorStats, MotionStats, SumOfSquares};
 
 use dispatch::{dispatch, GnssLayout};
@@ -92,6 +96,10 @@ pub struct Inputs {
     /// run's own outputs. Plain names only: one with a folder, `.` or `..`
     /// is an error.
     pub also_written: Vec<String>,
+    /// Also run the RTS smoother over the forward pass (`--smooth`):
+    /// writes `smoothed.nav`, `smoothed.csv`, `smoothed_std.csv` and, with
+    /// a truth, `errors_smoothed.csv`.
+    pub smooth: bool,
 }
 
 impl Inputs {
@@ -111,6 +119,7 @@ impl Inputs {
             out: out.into(),
             outages: Vec::new(),
             also_written: Vec::new(),
+            smooth: false,
         }
     }
 }
@@ -123,6 +132,14 @@ pub struct ErrorTraces {
     pub every: Vec<EpochRecord>,
     /// At the aiding epochs, after the update.
     pub aiding: Vec<EpochRecord>,
+    /// The smoothed solution's errors at every compared truth epoch (empty
+    /// without `smooth`).
+    pub smoothed: Vec<EpochRecord>,
+    /// The forward filter's position NEES `(time, NEES)` at the compared
+    /// epochs, thinned like the errors.
+    pub nees: Vec<(f64, f64)>,
+    /// The same for the smoothed solution (empty without `smooth`).
+    pub smoothed_nees: Vec<(f64, f64)>,
 }
 
 /// What [`process`] returns: the report and, with a truth, the error
@@ -164,6 +181,9 @@ pub struct ProcessReport {
     /// The same at the aiding epochs only (after the update); `None`
     /// without a truth or without an update at a truth epoch.
     pub aiding_errors: Option<ErrorStats>,
+    /// The position NEES of the forward filter at the compared epochs
+    /// (with a truth).
+    pub consistency: Option<Consistency>,
     /// Horizontal and vertical errors in each outage window and data gap
     /// (with a truth file).
     pub drift: Vec<WindowDrift>,
@@ -173,6 +193,8 @@ pub struct ProcessReport {
     pub axes: PositionAxes,
     /// Files written.
     pub files: Vec<PathBuf>,
+    /// The smoothed solution (with `smooth`).
+    pub smoothed: Option<SmoothedReport>,
 }
 
 /// Processes the files of `inputs`, writes the results into `inputs.out`
@@ -287,6 +309,41 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
             ),
         })?),
     };
+    let smoother = if inputs.smooth {
+        let evaluation = match inputs.truth.as_deref() {
+            None => None,
+            Some(p) => Some(Evaluation::new(EvaluationSetup {
+                earth: settings.earth,
+                axes: settings.axes,
+                truth: Truth::open(p, &settings.truth.format, settings.week)?,
+                antenna: settings.truth.at_antenna.then_some(settings.lever_arm),
+                csv_path: inputs.out.join("errors_smoothed.csv"),
+                drift: DriftTable::new(
+                    &inputs.outages,
+                    inputs
+                        .gnss
+                        .as_deref()
+                        .and_then(|p| gnss_gap_threshold(p, &settings)),
+                    settings.start.time,
+                ),
+            })?),
+        };
+        Some(smooth::ForwardRecord::new(
+            &inputs.out,
+            smooth::SmoothSetup {
+                label: settings.kind.label(),
+                week: settings.week,
+                interval: settings.output_interval,
+                earth: settings.earth,
+                nav_path: inputs.out.join("smoothed.nav"),
+                csv_path: inputs.out.join("smoothed.csv"),
+                std_path: inputs.out.join("smoothed_std.csv"),
+                evaluation,
+            },
+        )?)
+    } else {
+        None
+    };
     let nav_path = inputs.out.join("result.nav");
     let csv_path = inputs.out.join("result.csv");
     // The span reported as progress: to the last line's time (GINS layout
@@ -328,6 +385,9 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
         timing_rule: settings.timing,
         timing: timing::TimingReport::default(),
         pending: std::collections::VecDeque::new(),
+        smoother,
+        smoothed: None,
+        smoothed_traces: (Vec::new(), Vec::new()),
     };
     let outcome = dispatch(&settings, layout, &mut job);
     // Nothing compared is an error, never a row of zeros.
@@ -348,16 +408,21 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
     outcome?;
     let mut files = vec![nav_path, csv_path];
     let (mut errors, mut aiding_errors, mut drift) = (None, None, Vec::new());
+    let mut consistency = None;
     let mut traces = None;
     if let Some(e) = job.sink.evaluation.take() {
         errors = e.all.finish();
         aiding_errors = e.aiding.finish();
+        consistency = Some(e.consistency);
         drift = e.drift.clone().finish(job.sink.end_time);
         files.push(inputs.out.join("errors.csv"));
         files.extend(write_errors(&inputs.out, &e, &drift)?);
         traces = Some(ErrorTraces {
             every: e.errors.records,
             aiding: e.updates.records,
+            smoothed: std::mem::take(&mut job.smoothed_traces.0),
+            nees: e.nees.records,
+            smoothed_nees: std::mem::take(&mut job.smoothed_traces.1),
         });
     }
     let report = ProcessReport {
@@ -373,10 +438,12 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
         rejected: job.sink.rejected,
         errors,
         aiding_errors,
+        consistency,
         drift,
         timing: job.timing.clone(),
         axes: settings.axes,
         files,
+        smoothed: job.smoothed.take(),
     };
     Ok(Processed { report, traces })
 }
@@ -402,6 +469,13 @@ fn output_names(extra: &[String]) -> Vec<String> {
         "errors.csv",
         "error_summary.csv",
         "drift.csv",
+        "smoothed.nav",
+        "smoothed.csv",
+        "smoothed_std.csv",
+        "errors_smoothed.csv",
+        ".smoother-epochs.partial",
+        ".smoother-samples.partial",
+        ".smoother-corrections.partial",
     ]
     .map(String::from)
     .into_iter()
@@ -586,27 +660,73 @@ pub fn summary(r: &ProcessReport) -> String {
             e,
         );
     }
-    if !r.drift.is_empty() {
-        s += "drift without GNSS (horizontal / vertical error, RMS and max):\n";
-        for w in &r.drift {
-            s += &format!(
-                "  {:<6} {} to {} s ({} s): ",
-                w.kind.name(),
-                w.start,
-                w.end,
-                w.end - w.start
-            );
-            s += &match (w.horizontal, w.vertical) {
-                (Some((rh, mh)), Some((rv, mv))) => format!(
-                    "{} epochs, horizontal {rh:.4} / {mh:.4} m, vertical {rv:.4} / {mv:.4} m\n",
-                    w.epochs
-                ),
-                _ => "no truth epoch in the window\n".to_owned(),
-            };
-        }
+    if let Some(c) = &r.consistency {
+        s += &nees_line(c);
     }
-    for f in &r.files {
+    s += &drift_block(&r.drift);
+    if let Some(sm) = &r.smoothed {
+        s += &format!(
+            "smoothed (Rauch-Tung-Striebel over {} covariance epochs):\n",
+            sm.epochs
+        );
+        if let Some(e) = &sm.errors {
+            s += &error_block(
+                &format!(
+                    "  errors against the truth at {} epochs (RMS / max |error|):\n",
+                    e.epochs
+                ),
+                e,
+            );
+        }
+        if let Some(c) = &sm.consistency {
+            s += &nees_line(c);
+        }
+        s += &drift_block(&sm.drift);
+    }
+    let smoothed_files = r.smoothed.iter().flat_map(|sm| &sm.files);
+    for f in r.files.iter().chain(smoothed_files) {
         s += &format!("wrote {}\n", f.display());
+    }
+    s
+}
+
+/// The NEES line: mean and share inside the band, or why there is none.
+fn nees_line(c: &Consistency) -> String {
+    let (low, high) = NEES_BAND_3DOF;
+    match (c.mean(), c.inside_share()) {
+        (Some(mean), Some(share)) => format!(
+            "position NEES (3 degrees of freedom, consistent: mean 3): mean {mean:.2}, \
+             {:.1} % of {} epochs inside the 95 % χ² band [{low:.3}, {high:.3}], {:.1} % above\n",
+            100.0 * share,
+            c.epochs,
+            100.0 * c.above as f64 / c.epochs as f64
+        ),
+        _ => "position NEES: no epoch with a usable covariance\n".to_owned(),
+    }
+}
+
+/// The drift table's lines (nothing for no window).
+fn drift_block(drift: &[WindowDrift]) -> String {
+    let mut s = String::new();
+    if drift.is_empty() {
+        return s;
+    }
+    s += "drift without GNSS (horizontal / vertical error, RMS and max):\n";
+    for w in drift {
+        s += &format!(
+            "  {:<6} {} to {} s ({} s): ",
+            w.kind.name(),
+            w.start,
+            w.end,
+            w.end - w.start
+        );
+        s += &match (w.horizontal, w.vertical) {
+            (Some((rh, mh)), Some((rv, mv))) => format!(
+                "{} epochs, horizontal {rh:.4} / {mh:.4} m, vertical {rv:.4} / {mv:.4} m\n",
+                w.epochs
+            ),
+            _ => "no truth epoch in the window\n".to_owned(),
+        };
     }
     s
 }

@@ -45,6 +45,12 @@ pub(crate) struct Job<'p> {
     pub timing: TimingReport,
     /// IMU records read ahead (to estimate the nominal interval).
     pub pending: VecDeque<ImuRecord>,
+    /// The record for `--smooth`.
+    pub smoother: Option<super::smooth::ForwardRecord>,
+    /// What the smoother did.
+    pub smoothed: Option<super::smooth::SmoothedReport>,
+    /// The smoothed solution's errors, thinned (with a truth).
+    pub smoothed_traces: super::smooth::SmoothedTraces,
 }
 
 /// A reading of the odometer file is used for this long after its time, s:
@@ -278,6 +284,9 @@ impl Job<'_> {
             if let Some(e) = self.sink.evaluation.as_mut() {
                 e.drift.fix(fix.time);
             }
+            if let Some(r) = self.smoother.as_mut() {
+                r.fix(fix.time);
+            }
             return Ok(Some((fix, line)));
         }
     }
@@ -418,6 +427,7 @@ where
     engine
         .imu(&increment)
         .map_err(|e| diverged(e, Step::Imu, format!("IMU line {}", imu_line())))?;
+    record_epoch(job, engine)?;
     let mut update = None;
     while let Some((fix, line)) = job.gnss_due(t, following.as_ref().map(|f| f.time))? {
         let rows = if fix.vel.is_some() { 6 } else { 3 };
@@ -427,6 +437,7 @@ where
             None => format!("GNSS line {line}"),
         };
         update = Some(gnss(engine, &fix).map_err(|e| diverged(e, Step::Gnss(rows), input()))?);
+        record_epoch(job, engine)?;
     }
     // The speed, and its line in the odometer file (`None`: the IMU file).
     let speed = match job.odometer_file.as_mut() {
@@ -442,10 +453,18 @@ where
             };
             update =
                 Some(odometer(engine, &reading).map_err(|e| diverged(e, Step::Odometer, input()))?);
+            record_epoch(job, engine)?;
         }
     }
+    // The position block of the error covariance, for the NEES (only
+    // with a truth: a copy of P per sample otherwise wasted).
+    let covariance = job
+        .sink
+        .evaluation
+        .is_some()
+        .then(|| engine.covariance().fixed_view::<3, 3>(6, 6).into_owned());
     job.sink
-        .sample(engine.solution(), update)
+        .sample(engine.solution(), update, covariance.as_ref())
         .map_err(|e| match e {
             Error::Failed(m) => Error::Failed(format!(
                 "{label} diverged at {t} s of week after IMU line {}: {m}",
@@ -453,5 +472,25 @@ where
             )),
             other => other,
         })?;
+    if let Some(r) = job.smoother.as_mut() {
+        r.sample(engine.solution())?;
+    }
     Ok(following)
+}
+
+/// Streams the covariance epoch the engine closed, if any, to the
+/// smoother's record.
+fn record_epoch<const N: usize, S, F, A>(
+    job: &mut Job<'_>,
+    engine: &mut LooselyCoupled<f64, N, S, F, A>,
+) -> Result<(), Error>
+where
+    S: ErrorSystem<N>,
+    F: Form<f64, N> + PredictForm<f64, N, S::Process>,
+    A: PriorAdapter<f64>,
+{
+    match (job.smoother.as_mut(), engine.take_epoch()) {
+        (Some(r), Some(e)) => r.epoch(&e),
+        _ => Ok(()),
+    }
 }

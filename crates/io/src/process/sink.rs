@@ -5,6 +5,7 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
+use kestrel::nalgebra::Matrix3;
 use kestrel::nav::experiment::Adaptation;
 use kestrel::nav::NavState;
 
@@ -115,6 +116,7 @@ impl<'p> Sink<'p> {
         &mut self,
         nav: &NavState,
         update: Option<Adaptation>,
+        covariance: Option<&Matrix3<f64>>,
     ) -> Result<(), Error> {
         let t = nav.time;
         let finite = nav.pos.lat.is_finite()
@@ -134,7 +136,7 @@ impl<'p> Sink<'p> {
             self.rejected += usize::from(a.rejected);
         }
         if let Some(e) = self.evaluation.as_mut() {
-            e.sample(nav, update)?;
+            e.sample(nav, update, covariance)?;
         }
         if self.interval == 0.0 || self.schedule.due(t, 1.0 / self.interval) {
             self.write(nav)?;

@@ -3,10 +3,11 @@
 
 use kestrel_core::adapter::{NoiseAdapter, PriorAdapter};
 use kestrel_core::form::{Form, PredictForm, UpdateForm};
-use kestrel_core::{real::lit, Filter, FilterError, Real, UpdateReport};
+use kestrel_core::{real::lit, Filter, FilterError, LinearizedProcess, Real, UpdateReport};
 use nalgebra::{SMatrix, SVector, Vector3};
 
 use super::feedback::{feed_back, SensorCorrections};
+use super::record::{ForwardEpoch, Recording};
 use super::system::ErrorSystem;
 use crate::error_model::ForcingMean;
 use crate::imu::ImuIncrement;
@@ -75,6 +76,7 @@ pub struct LooselyCoupled<T: Real, const N: usize, S, F, A = ()> {
     omega_ib: Vector3<f64>,
     accel_ned: Vector3<f64>,
     last_dt: f64,
+    recording: Option<Recording<S, T, N>>,
 }
 
 impl<T, const N: usize, S, F, A> LooselyCoupled<T, N, S, F, A>
@@ -113,6 +115,7 @@ where
             omega_ib: Vector3::zeros(),
             accel_ned: Vector3::zeros(),
             last_dt: 0.0,
+            recording: None,
         }
     }
 
@@ -226,8 +229,23 @@ where
             let model = self
                 .system
                 .process(self.ins.earth(), self.ins.state(), &self.forcing);
-            self.filter.predict(&model, lit(self.forcing.dt()))?;
+            let dt = lit(self.forcing.dt());
+            let transition = self.recording.as_ref().map(|r| {
+                (r.transition)(
+                    &self.system,
+                    self.ins.earth(),
+                    self.ins.state(),
+                    &self.forcing,
+                    self.filter.state(),
+                    dt,
+                )
+            });
+            self.filter.predict(&model, dt)?;
             self.forcing.clear();
+            if let (Some(r), Some(phi)) = (self.recording.as_mut(), transition) {
+                let p = self.filter.covariance();
+                r.open(ForwardEpoch::propagated(self.ins.state().time, phi, p));
+            }
         }
         Ok(())
     }
@@ -302,6 +320,7 @@ where
         self.propagate_covariance()?;
         let report = self.filter.update(model, &model.z())?;
         self.close_loop()?;
+        self.note_update();
         Ok(report)
     }
 
@@ -344,6 +363,7 @@ where
         self.propagate_covariance()?;
         let report = self.filter.update_with(model, &model.z(), adapter)?;
         self.close_loop()?;
+        self.note_update();
         Ok(report)
     }
 
@@ -463,11 +483,42 @@ where
         odometer.forward_nhc(&self.system, &ins, reading, self.corrections.odometer_scale)
     }
 
+    /// The epoch record after an update: the posterior covariance.
+    fn note_update(&mut self) {
+        if let Some(r) = self.recording.as_mut() {
+            r.open.posterior_covariance = self.filter.covariance();
+        }
+    }
+
+    /// The covariance epoch closed by the last propagation, once (with
+    /// [`record_epochs`](Self::record_epochs)). Take it after every call
+    /// that may propagate ([`imu`](Self::imu), the updates): an epoch
+    /// closed before the previous one was taken is counted by
+    /// [`recording_overrun`](Self::recording_overrun).
+    pub fn take_epoch(&mut self) -> Option<ForwardEpoch<T, N>> {
+        self.recording.as_mut().and_then(|r| r.closed.take())
+    }
+
+    /// Ends the recording and returns the last epoch, still open (the
+    /// epochs closed before it are [`take_epoch`](Self::take_epoch)'s).
+    pub fn finish_epochs(&mut self) -> Option<ForwardEpoch<T, N>> {
+        self.recording.take().map(|r| r.open)
+    }
+
+    /// Epochs lost because the one before was not taken in time (zero
+    /// when the caller takes after every call).
+    pub fn recording_overrun(&self) -> usize {
+        self.recording.as_ref().map_or(0, |r| r.overrun)
+    }
+
     /// Feeds the error-state estimate back and resets it to zero.
     fn close_loop(&mut self) -> Result<(), FilterError> {
         let dx = *self.filter.state();
         if dx.iter().all(|v| *v == T::zero()) {
             return Ok(());
+        }
+        if let Some(r) = self.recording.as_mut() {
+            r.open.feedback += dx;
         }
         let earth = *self.ins.earth();
         feed_back::<T, N, S>(&dx, &earth, self.ins.state_mut(), &mut self.corrections);
@@ -744,5 +795,62 @@ where
     /// ```
     pub fn pending_interval(&self) -> f64 {
         self.forcing.dt()
+    }
+}
+
+impl<T, const N: usize, S, F, A> LooselyCoupled<T, N, S, F, A>
+where
+    T: Real,
+    S: ErrorSystem<N>,
+    S::Process: LinearizedProcess<T, N>,
+    F: Form<T, N> + PredictForm<T, N, S::Process>,
+    A: PriorAdapter<T>,
+{
+    /// Starts recording the forward pass for a smoother: from now on every
+    /// covariance propagation opens a [`ForwardEpoch`] (with `Φ` of the
+    /// same process model, evaluated where the filter evaluates it) and the
+    /// updates and feedback at that sample complete it. The first epoch is
+    /// the current solution and covariance. Call it before the first IMU
+    /// sample; the error state must be zero (it is, between updates).
+    ///
+    /// ```
+    /// # use kestrel_core::{Ekf, nalgebra::{SVector, Vector3}};
+    /// # use kestrel_nav::{Ellipsoid, Euler, Geodetic, ImuIncrement, ImuSpec, NavState, Strapdown};
+    /// # use kestrel_nav::engine::{ErrorSystem, InitialUncertainty, Ins15, LooselyCoupled};
+    /// # use kestrel_nav::measurement::{GnssAntenna, GnssFix};
+    /// # let earth = Ellipsoid::wgs84();
+    /// # let start = NavState::new(0.0, Geodetic::from_degrees(30.0, 114.0, 0.0), Vector3::zeros(),
+    /// #     Euler::default());
+    /// # let system = Ins15::new(ImuSpec::perfect().with_gyro_arw_deg_per_sqrt_h(0.1));
+    /// # let p0 = system.initial_covariance(&InitialUncertainty::new(0.01, 0.1, 1.0));
+    /// # let mut engine = LooselyCoupled::new(Strapdown::new(earth, start),
+    /// #     Ekf::<f64, 15>::new(SVector::zeros(), p0).unwrap(), system,
+    /// #     GnssAntenna::new(Vector3::zeros()), 0.1);
+    /// # let g = earth.gravity(start.pos.lat, 0.0);
+    /// # let still = |k: usize| ImuIncrement::from_rates(k as f64 * 0.01, 0.01,
+    /// #     earth.earth_rate_ned(start.pos.lat), Vector3::new(0.0, 0.0, -g));
+    /// engine.record_epochs();
+    /// let mut epochs = Vec::new();
+    /// for k in 1..=20 {
+    ///     engine.imu(&still(k)).unwrap();
+    ///     epochs.extend(engine.take_epoch());
+    /// }
+    /// engine.gnss(&GnssFix::new(0.2, start.pos, Vector3::zeros())).unwrap();
+    /// epochs.extend(engine.take_epoch());
+    /// epochs.extend(engine.finish_epochs());
+    /// // The initial epoch, and propagations at 0.1 s and 0.2 s (the fix's).
+    /// assert_eq!(epochs.len(), 3);
+    /// assert!((epochs[2].time - 0.2).abs() < 1e-12);
+    /// assert!(epochs[2].posterior_covariance[(6, 6)] < epochs[2].prior_covariance[(6, 6)]);
+    /// ```
+    pub fn record_epochs(&mut self) {
+        self.recording = Some(Recording {
+            transition: |system, earth, nav, forcing, x, dt| {
+                system.process(earth, nav, forcing).transition(x, dt)
+            },
+            open: ForwardEpoch::initial(self.ins.state().time, self.filter.covariance()),
+            closed: None,
+            overrun: 0,
+        });
     }
 }

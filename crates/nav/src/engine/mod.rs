@@ -20,13 +20,18 @@
 //!   corrected, the sensor-error estimates accumulated into
 //!   [`SensorCorrections`] (subtracted from later readings) and the error
 //!   state reset to zero; the covariance is kept (identity reset Jacobian).
+//! - Smoothing: with [`LooselyCoupled::record_epochs`] the engine keeps
+//!   what a Rauch–Tung–Striebel pass over the closed-loop error state
+//!   needs, one [`ForwardEpoch`] per covariance epoch.
 
 mod feedback;
 mod loosely;
+mod record;
 mod run;
 mod system;
 
 pub use feedback::{feed_back, SensorCorrections};
 pub use loosely::LooselyCoupled;
+pub use record::ForwardEpoch;
 pub use run::{Epoch, Timed};
 pub use system::{ErrorSystem, InitialUncertainty, Ins15, Ins18};
