@@ -208,7 +208,11 @@ fn configuration_errors_name_the_line_column_or_key() {
         ("velocity = [", "velocity = [0.0, 3e3, 0.0]\n#", "initial.velocity[1]", "expected a speed in [-1000, 1000] m/s, found 3000"),
         ("attitude = [", "attitude = [0.0, 95.0, 0.0]\n#", "initial.attitude[1]", "expected a pitch in [-90, 90] deg, found 95"),
         ("gyro_arw = ", "gyro_bias = 10.0\ngyro_arw = ", "imu.gyro_bias", "not used by `process`: the filter's initial gyro bias σ is `initial.std.gyro_bias` (°/h) and a drifting bias is `imu.gyro_markov_sigma` / `imu.gyro_markov_tau`"),
-        ("gyro_arw = ", "accel_scale = 100\ngyro_arw = ", "imu.accel_scale", "not used by `process`: scale-factor errors are not states of the `ins15`, `ins18` or `odometer16` error models; remove the key"),
+        ("gyro_arw = ", "accel_scale = 100\ngyro_arw = ", "imu.accel_scale", "not used by `process`: the filter's scale-factor σ is `initial.std.gyro_scale` / `accel_scale` (ppm, error_model = `ins21`) and a known scale-factor error is `initial.gyro_scale` / `accel_scale`"),
+        ("odometer_scale = ", "gyro_scale = [100.0, 100.0, 100.0]\nodometer_scale = ", "initial.std.gyro_scale", "scale-factor errors are states of error_model = `ins21` only (a known scale-factor error is `initial.gyro_scale` / `initial.accel_scale`)"),
+        ("gyro_arw = ", "scale_tau = 3600.0\ngyro_arw = ", "imu.scale_tau", "scale-factor errors are states of error_model = `ins21` only (a known scale-factor error is `initial.gyro_scale` / `initial.accel_scale`)"),
+        ("attitude = [", "gyro_scale = [0.0, 2e5, 0.0]\nattitude = [", "initial.gyro_scale[1]", "expected a scale-factor error in [-100000, 100000] ppm, found 200000"),
+        ("attitude = [", "accel_bias = [0.0, 0.0, 3e5]\nattitude = [", "initial.accel_bias[2]", "expected an accelerometer bias in [-200000, 200000] µg, found 300000"),
         ("kind = ", "kind = \"ict-erekf\"\nsignificance = 1.5\n#", "filter.significance", "expected 0.01 ≤ significance ≤ 0.15 (the range the test is built for), found 1.5"),
         ("kind = ", "kind = \"fading\"\nrho = 1.5\n#", "filter.rho", "expected 0 ≤ ρ ≤ 1, found 1.5"),
         ("kind = ", "kind = \"sage-husa-fading\"\nlambda_max = 0.5\n#", "filter.lambda_max", "expected at least 1, found 0.5"),
@@ -223,6 +227,20 @@ fn configuration_errors_name_the_line_column_or_key() {
         let (p, e) = config_error(&dir, &text);
         assert_eq!(e, format!("{}: key `{key}`: {msg}", p.display()));
     }
+    // The 21-state model: a Markov σ of the scale factors needs their
+    // correlation time.
+    let text = good
+        .replacen("error_model = \"ins15\"", "error_model = \"ins21\"", 1)
+        .replacen("gyro_arw = ", "gyro_scale_sigma = 100.0\ngyro_arw = ", 1);
+    let (p, e) = config_error(&dir, &text);
+    assert_eq!(
+        e,
+        format!(
+            "{}: key `imu.gyro_scale_sigma`: a Markov σ needs `imu.scale_tau` (without it the \
+             scale factors are random constants)",
+            p.display()
+        )
+    );
 
     // --odo needs the odometer table.
     let mut a = args(&dir, true);

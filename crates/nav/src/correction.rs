@@ -140,7 +140,8 @@ impl NavError {
 ///
 /// ```
 /// use kestrel_nav::{ImuBiases, ImuIncrement, nalgebra::Vector3};
-/// let b = ImuBiases { gyro: Vector3::new(1e-4, 0.0, 0.0), accel: Vector3::new(0.0, 0.0, 0.01) };
+/// let b = ImuBiases { gyro: Vector3::new(1e-4, 0.0, 0.0), accel: Vector3::new(0.0, 0.0, 0.01),
+///     ..Default::default() };
 /// let raw = ImuIncrement::from_rates(0.01, 0.01, Vector3::new(1e-4, 0.0, 0.0), Vector3::zeros());
 /// let c = b.compensate(&raw);
 /// assert_eq!(c.dtheta.x, 0.0);
@@ -152,20 +153,35 @@ pub struct ImuBiases {
     pub gyro: Vector3<f64>,
     /// Accelerometer bias, body, m/s².
     pub accel: Vector3<f64>,
+    /// Gyro scale-factor error per body axis, ratio (`measured = (1 + s) ·
+    /// true + bias`).
+    pub gyro_scale: Vector3<f64>,
+    /// Accelerometer scale-factor error per body axis, ratio.
+    pub accel_scale: Vector3<f64>,
 }
 
 impl ImuBiases {
-    /// The increment with the biases removed.
+    /// The increment with the biases removed and the scale factors divided
+    /// out: `true = (measured − bias) / (1 + s)` per axis.
     ///
     /// ```
     /// use kestrel_nav::{ImuBiases, ImuIncrement, nalgebra::Vector3};
     /// let raw = ImuIncrement::from_rates(1.0, 0.5, Vector3::x(), Vector3::y());
     /// assert_eq!(ImuBiases::default().compensate(&raw), raw);
+    /// let b = ImuBiases { gyro_scale: Vector3::repeat(1e-3), ..Default::default() };
+    /// assert!((b.compensate(&raw).dtheta.x - 0.5 / 1.001).abs() < 1e-15);
     /// ```
     pub fn compensate(&self, imu: &ImuIncrement) -> ImuIncrement {
+        let unscale = |v: Vector3<f64>, s: &Vector3<f64>| {
+            if *s == Vector3::zeros() {
+                v
+            } else {
+                v.component_div(&s.add_scalar(1.0))
+            }
+        };
         ImuIncrement {
-            dtheta: imu.dtheta - self.gyro * imu.dt,
-            dvel: imu.dvel - self.accel * imu.dt,
+            dtheta: unscale(imu.dtheta - self.gyro * imu.dt, &self.gyro_scale),
+            dvel: unscale(imu.dvel - self.accel * imu.dt, &self.accel_scale),
             ..*imu
         }
     }

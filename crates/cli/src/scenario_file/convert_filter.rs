@@ -18,9 +18,16 @@ use super::units::{ACCEL, ANGLE, GYRO_RATE, RATIO, SI};
 pub(super) fn setup(f: &FilterSection) -> Res<FilterSetup> {
     let p = "filter";
     let tau_key = join(p, "odometer_scale_tau_s");
+    let scale_key = join(p, "scale_tau_s");
     let error_model = match f.error_model {
         ErrorModelName::Ins15 => ErrorModelKind::Ins15,
         ErrorModelName::Ins18 => ErrorModelKind::Ins18,
+        ErrorModelName::Ins21 => ErrorModelKind::Ins21 {
+            scale_tau: match f.scale_tau_s {
+                Some(t) => num(&scale_key, t, Range::Tau)?,
+                None => f64::INFINITY,
+            },
+        },
         ErrorModelName::Odometer16 => {
             let tau = need(
                 &tau_key,
@@ -35,6 +42,17 @@ pub(super) fn setup(f: &FilterSection) -> Res<FilterSetup> {
     if !matches!(error_model, ErrorModelKind::Odometer16 { .. }) && f.odometer_scale_tau_s.is_some()
     {
         return Err(bad(tau_key, "applies only to error_model = \"odometer16\""));
+    }
+    let ins21 = matches!(error_model, ErrorModelKind::Ins21 { .. });
+    if !ins21 && f.scale_tau_s.is_some() {
+        return Err(bad(scale_key, "applies only to error_model = \"ins21\""));
+    }
+    let p0 = p0(&f.p0)?;
+    if !ins21 && (p0.gyro_scale != Vector3::zeros() || p0.accel_scale != Vector3::zeros()) {
+        return Err(bad(
+            "filter.p0.gyro_scale / accel_scale".to_owned(),
+            "scale-factor states exist in error_model = \"ins21\" only",
+        ));
     }
     let mounting = match f.odometer_mounting_deg {
         Some(m) => {
@@ -53,7 +71,7 @@ pub(super) fn setup(f: &FilterSection) -> Res<FilterSetup> {
             MeasurementName::OdometerVelocity => MeasurementKind::OdometerVelocity,
         },
         imu_model: imu_spec(&f.imu)?,
-        p0: p0(&f.p0)?,
+        p0,
         r: r(&f.r)?,
         lever_arm: f.lever_arm_m.map_or(Ok(Vector3::zeros()), |l| {
             vec3(&join(p, "lever_arm_m"), l, Range::Any)
@@ -99,6 +117,18 @@ fn p0(s: &P0Section) -> Res<InitialUncertainty> {
             p,
             "accel_bias",
             &[(ug, s.accel_bias_ug), (mg, s.accel_bias_mg)],
+            nn,
+        )?),
+        gyro_scale: z(quantity(
+            p,
+            "gyro_scale",
+            &[(ppm, s.gyro_scale_ppm), (percent, s.gyro_scale_percent)],
+            nn,
+        )?),
+        accel_scale: z(quantity(
+            p,
+            "accel_scale",
+            &[(ppm, s.accel_scale_ppm), (percent, s.accel_scale_percent)],
             nn,
         )?),
         odometer_scale: scalar_quantity(

@@ -17,11 +17,13 @@ pub(super) fn filter(w: &mut Writer, s: &Scenario) {
         ErrorModelKind::Ins15 => ("ins15", None),
         ErrorModelKind::Ins18 => ("ins18", None),
         ErrorModelKind::Odometer16 { scale_tau } => ("odometer16", Some(scale_tau)),
+        ErrorModelKind::Ins21 { .. } => ("ins21", None),
     };
     w.string(
         "error_model",
         model,
-        "\"ins15\", \"ins18\" (+ gyro Markov) or \"odometer16\" (+ odometer scale)",
+        "\"ins15\", \"ins18\" (+ gyro Markov), \"ins21\" (+ IMU scale factors) or \
+         \"odometer16\" (+ odometer scale)",
     );
     if let Some(t) = tau {
         w.num(
@@ -29,6 +31,15 @@ pub(super) fn filter(w: &mut Writer, s: &Scenario) {
             t,
             "odometer scale-error correlation time, s",
         );
+    }
+    if let ErrorModelKind::Ins21 { scale_tau } = f.error_model {
+        if scale_tau.is_finite() {
+            w.num(
+                "scale_tau_s",
+                scale_tau,
+                "IMU scale-factor correlation time, s (omit: random constants)",
+            );
+        }
     }
     let m = match f.measurement {
         MeasurementKind::GnssPositionVelocity => "gnss-position-velocity",
@@ -98,6 +109,20 @@ pub(super) fn filter(w: &mut Writer, s: &Scenario) {
         p.odometer_scale,
         "odometer scale σ (odometer16): ppm or %",
     );
+    if matches!(f.error_model, ErrorModelKind::Ins21 { .. }) {
+        w.quantity(
+            "gyro_scale",
+            &RATIO,
+            p.gyro_scale,
+            "gyro scale-factor σ (ins21): ppm or %",
+        );
+        w.quantity(
+            "accel_scale",
+            &RATIO,
+            p.accel_scale,
+            "accelerometer scale-factor σ (ins21): ppm or %",
+        );
+    }
 
     let r = &f.r;
     w.table(

@@ -12,6 +12,7 @@ use super::vec3::V3;
 pub(super) enum ErrorModelName {
     Ins15,
     Ins18,
+    Ins21,
     Odometer16,
 }
 
@@ -30,6 +31,7 @@ pub(super) enum MeasurementName {
 pub(super) struct FilterSection {
     pub error_model: ErrorModelName,
     pub odometer_scale_tau_s: Option<f64>,
+    pub scale_tau_s: Option<f64>,
     pub measurement: MeasurementName,
     pub lever_arm_m: Option<V3>,
     pub odometer_mounting_deg: Option<[f64; 2]>,
@@ -56,6 +58,10 @@ pub(super) struct P0Section {
     pub accel_bias_mg: Option<V3>,
     pub odometer_scale_ppm: Option<f64>,
     pub odometer_scale_percent: Option<f64>,
+    pub gyro_scale_ppm: Option<V3>,
+    pub gyro_scale_percent: Option<V3>,
+    pub accel_scale_ppm: Option<V3>,
+    pub accel_scale_percent: Option<V3>,
 }
 
 /// `[filter.r]`: measurement standard deviations.

@@ -121,7 +121,12 @@ pub fn process_config(scenario: &Scenario, start: &NavState, kind: &FilterKind) 
         "accel_bias = {}",
         v3(&p.accel_bias, |x| inv(x, ug(1.0), ug))
     );
-    let _ = writeln!(w, "odometer_scale = {}\n", f(p.odometer_scale));
+    let _ = writeln!(w, "odometer_scale = {}", f(p.odometer_scale));
+    if let ErrorModelKind::Ins21 { .. } = fs.error_model {
+        let _ = writeln!(w, "gyro_scale = {}", v3(&p.gyro_scale, |x| x * 1e6));
+        let _ = writeln!(w, "accel_scale = {}", v3(&p.accel_scale, |x| x * 1e6));
+    }
+    let _ = writeln!(w);
 
     let m = &fs.imu_model;
     let _ = writeln!(w, "[imu]");
@@ -142,7 +147,15 @@ pub fn process_config(scenario: &Scenario, start: &NavState, kind: &FilterKind) 
         "accel_markov_sigma = {}",
         f(inv(m.accel_markov_sigma, ug(1.0), ug))
     );
-    let _ = writeln!(w, "accel_markov_tau = {}\n", f(m.accel_markov_tau));
+    let _ = writeln!(w, "accel_markov_tau = {}", f(m.accel_markov_tau));
+    if let ErrorModelKind::Ins21 { scale_tau } = fs.error_model {
+        if scale_tau.is_finite() {
+            let _ = writeln!(w, "scale_tau = {}", f(scale_tau));
+            let _ = writeln!(w, "gyro_scale_sigma = {}", f(m.gyro_scale * 1e6));
+            let _ = writeln!(w, "accel_scale_sigma = {}", f(m.accel_scale * 1e6));
+        }
+    }
+    let _ = writeln!(w);
 
     let _ = writeln!(w, "[filter]");
     let lines = filter_lines(kind).unwrap_or_else(|| {
@@ -155,6 +168,7 @@ pub fn process_config(scenario: &Scenario, start: &NavState, kind: &FilterKind) 
     let model = match fs.error_model {
         ErrorModelKind::Ins15 => "ins15",
         ErrorModelKind::Ins18 => "ins18",
+        ErrorModelKind::Ins21 { .. } => "ins21",
         ErrorModelKind::Odometer16 { .. } => "odometer16",
     };
     let _ = writeln!(w, "error_model = \"{model}\"\ncovariance_interval = 0.1");

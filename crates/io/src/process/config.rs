@@ -10,12 +10,12 @@ use kestrel::nav::experiment::{
 };
 use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::scenario::{ErrorModelKind, FadeBlock, FilterKind, InitialUncertainty};
-use kestrel::nav::{Ellipsoid, Euler, Geodetic, ImuSpec, NavState};
+use kestrel::nav::{Ellipsoid, Euler, Geodetic, ImuBiases, ImuSpec, NavState};
 use kestrel::FilterError;
 use serde::{Deserialize, Deserializer};
 
 use super::timing::{LongGap, TimingRule};
-use super::units::{deg, deg_per_h, deg_per_sqrt_h, m_s_per_sqrt_h, ug};
+use super::units::{deg, deg_per_h, deg_per_sqrt_h, m_s_per_sqrt_h, ppm, ug};
 use crate::gins::imu_format::{signed_axis, ImuFormat, Measures, TimeBase};
 use crate::gins::physical;
 use crate::gins::Delimiter;
@@ -173,6 +173,12 @@ struct Initial {
     #[serde(default)]
     velocity: V3,
     attitude: V3,
+    /// Known sensor errors at the start (values, not σ): removed from the
+    /// readings from the first sample; the filter estimates what is left.
+    gyro_bias: Option<V3>,
+    accel_bias: Option<V3>,
+    gyro_scale: Option<V3>,
+    accel_scale: Option<V3>,
     std: InitialStd,
 }
 
@@ -190,6 +196,10 @@ struct InitialStd {
     accel_bias: V3,
     #[serde(default)]
     odometer_scale: f64,
+    #[serde(default)]
+    gyro_scale: V3,
+    #[serde(default)]
+    accel_scale: V3,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -209,6 +219,9 @@ struct Imu {
     accel_markov_tau: Option<f64>,
     gyro_scale: Option<Refused>,
     accel_scale: Option<Refused>,
+    scale_tau: Option<f64>,
+    gyro_scale_sigma: Option<f64>,
+    accel_scale_sigma: Option<f64>,
     max_gap: Option<f64>,
     long_gap: Option<String>,
 }
@@ -294,6 +307,9 @@ pub struct Settings {
     pub start: NavState,
     /// P0 as standard deviations.
     pub p0: InitialUncertainty,
+    /// Known sensor errors at the start (`initial.gyro_bias`, …): the
+    /// engine's first corrections.
+    pub initial_imu: ImuBiases,
     /// The filter's IMU error model.
     pub imu: ImuSpec,
     /// The error-state model.
@@ -548,12 +564,21 @@ impl Check<'_> {
                 id,
                 Zero::Absent,
             )?,
+            gyro_scale: self.sigmas(&key("gyro_scale"), s.gyro_scale, ppm, Zero::Absent)?,
+            accel_scale: self.sigmas(&key("accel_scale"), s.accel_scale, ppm, Zero::Absent)?,
         };
-        let imu = self.imu(&f.imu)?;
+        let initial_imu = self.initial_imu(i)?;
+        let mut imu = self.imu(&f.imu)?;
         let odometer = f.odometer.as_ref().map(|o| self.odometer(o)).transpose()?;
         let error_model = match f.filter.error_model.as_deref().unwrap_or("ins15") {
             "ins15" => ErrorModelKind::Ins15,
             "ins18" => ErrorModelKind::Ins18,
+            "ins21" => ErrorModelKind::Ins21 {
+                scale_tau: match f.imu.scale_tau {
+                    Some(t) => self.tau("imu.scale_tau", Some(t))?,
+                    None => f64::INFINITY,
+                },
+            },
             "odometer16" => match &f.odometer {
                 Some(o) => ErrorModelKind::Odometer16 {
                     scale_tau: self.positive("odometer.scale_tau", o.scale_tau)?,
@@ -568,10 +593,60 @@ impl Check<'_> {
             other => {
                 return Err(self.err(
                     "filter.error_model",
-                    format!("expected `ins15`, `ins18` or `odometer16`, found `{other}`"),
+                    format!("expected `ins15`, `ins18`, `ins21` or `odometer16`, found `{other}`"),
                 ))
             }
         };
+        let ins21 = matches!(error_model, ErrorModelKind::Ins21 { .. });
+        if !ins21 {
+            let given = [
+                ("initial.std.gyro_scale", p0.gyro_scale != Vector3::zeros()),
+                (
+                    "initial.std.accel_scale",
+                    p0.accel_scale != Vector3::zeros(),
+                ),
+                ("imu.scale_tau", f.imu.scale_tau.is_some()),
+                ("imu.gyro_scale_sigma", f.imu.gyro_scale_sigma.is_some()),
+                ("imu.accel_scale_sigma", f.imu.accel_scale_sigma.is_some()),
+            ];
+            if let Some((k, _)) = given.iter().find(|(_, g)| *g) {
+                return Err(self.err(
+                    k,
+                    "scale-factor errors are states of error_model = `ins21` only \
+                     (a known scale-factor error is `initial.gyro_scale` / `initial.accel_scale`)",
+                ));
+            }
+        } else {
+            // The scale factors' Markov σ (with a finite `scale_tau`): as
+            // given, else their initial σ (the RMS over the axes).
+            let markov = [
+                (
+                    "imu.gyro_scale_sigma",
+                    f.imu.gyro_scale_sigma,
+                    p0.gyro_scale,
+                ),
+                (
+                    "imu.accel_scale_sigma",
+                    f.imu.accel_scale_sigma,
+                    p0.accel_scale,
+                ),
+            ];
+            let mut sigma = [0.0; 2];
+            for (out, (key, given, initial)) in sigma.iter_mut().zip(markov) {
+                *out = match given {
+                    Some(_) if f.imu.scale_tau.is_none() => {
+                        return Err(self.err(
+                            key,
+                            "a Markov σ needs `imu.scale_tau` (without it the scale \
+                             factors are random constants)",
+                        ))
+                    }
+                    Some(x) => self.sigma(key, x, ppm, Zero::Absent)?,
+                    None => (initial.norm_squared() / 3.0).sqrt(),
+                };
+            }
+            [imu.gyro_scale, imu.accel_scale] = sigma;
+        }
         if odometer.is_some() && !matches!(error_model, ErrorModelKind::Odometer16 { .. }) {
             return Err(self.err(
                 "filter.error_model",
@@ -630,6 +705,7 @@ impl Check<'_> {
             week: i.week,
             start,
             p0,
+            initial_imu,
             imu,
             error_model,
             kind,
@@ -988,6 +1064,40 @@ impl Check<'_> {
         Ok(TimingRule { max_gap, long_gap })
     }
 
+    /// `initial.gyro_bias` (°/h), `accel_bias` (µg), `gyro_scale`,
+    /// `accel_scale` (ppm): known sensor errors, within physical bounds.
+    fn initial_imu(&self, i: &Initial) -> Result<ImuBiases, InputError> {
+        let bounded = |key: &str, v: Option<V3>, unit: fn(f64) -> f64, name: (&str, &str, f64)| {
+            let Some(v) = v else {
+                return Ok(Vector3::zeros());
+            };
+            let (what, unit_name, limit) = name;
+            self.vec(
+                &format!("initial.{key}"),
+                v,
+                |c: &Self, k: &str, x: f64| c.within(k, what, unit_name, x, (-limit, limit)),
+                unit,
+            )
+        };
+        let scale = ("a scale-factor error", "ppm", 100_000.0);
+        Ok(ImuBiases {
+            gyro: bounded(
+                "gyro_bias",
+                i.gyro_bias,
+                deg_per_h,
+                ("a gyro bias", "°/h", 36_000.0),
+            )?,
+            accel: bounded(
+                "accel_bias",
+                i.accel_bias,
+                ug,
+                ("an accelerometer bias", "µg", 200_000.0),
+            )?,
+            gyro_scale: bounded("gyro_scale", i.gyro_scale, ppm, scale)?,
+            accel_scale: bounded("accel_scale", i.accel_scale, ppm, scale)?,
+        })
+    }
+
     fn imu(&self, m: &Imu) -> Result<ImuSpec, InputError> {
         let use_p0 = |sensor: &str, unit: &str| {
             format!(
@@ -996,8 +1106,9 @@ impl Check<'_> {
                  `imu.{sensor}_markov_sigma` / `imu.{sensor}_markov_tau`"
             )
         };
-        let no_state = "not used by `process`: scale-factor errors are not states of the \
-                        `ins15`, `ins18` or `odometer16` error models; remove the key";
+        let no_state = "not used by `process`: the filter's scale-factor σ is \
+                        `initial.std.gyro_scale` / `accel_scale` (ppm, error_model = `ins21`) \
+                        and a known scale-factor error is `initial.gyro_scale` / `accel_scale`";
         let refused = [
             (
                 "imu.gyro_bias",

@@ -5,7 +5,7 @@
 
 use kestrel::adapter::{NoiseAdapter, PriorAdapter};
 use kestrel::form::{CovarianceForm, PredictForm};
-use kestrel::nav::engine::{ErrorSystem, Ins15, Ins18, LooselyCoupled};
+use kestrel::nav::engine::{ErrorSystem, Ins15, Ins18, Ins21, LooselyCoupled, SensorCorrections};
 use kestrel::nav::experiment::{
     build_filter, closed_loop_ekf, Adaptation, AidedEngine, BuildError, Describe, FilterLoop,
     GnssAiding, OdometerAiding, OdometerProcessing,
@@ -105,6 +105,9 @@ where
         match self.s.error_model {
             ErrorModelKind::Ins15 => self.run(Ins15::new(imu), adapter, fade),
             ErrorModelKind::Ins18 => self.run(Ins18::new(imu), adapter, fade),
+            ErrorModelKind::Ins21 { scale_tau } => {
+                self.run(Ins21::new(imu, scale_tau), adapter, fade)
+            }
             ErrorModelKind::Odometer16 { .. } => Err(Error::Failed(
                 "the odometer model runs `ekf`, `max-threshold` or `fuzzy-adaptive`".into(),
             )),
@@ -186,6 +189,10 @@ where
         GnssAntenna::new(s.lever_arm),
         s.covariance_interval,
     )
+    .with_corrections(SensorCorrections {
+        imu: s.initial_imu,
+        ..SensorCorrections::default()
+    })
 }
 
 /// The 16-state SINS / odometer EKF with odometer processing `processing`

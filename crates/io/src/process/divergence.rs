@@ -33,6 +33,8 @@ pub(crate) fn state_component(model: ErrorModelKind, i: usize) -> String {
         (_, 3) => format!("gyro bias {}", XYZ[k]),
         (_, 4) => format!("accelerometer bias {}", XYZ[k]),
         (ErrorModelKind::Odometer16 { .. }, 5) if k == 0 => "odometer scale factor".to_owned(),
+        (ErrorModelKind::Ins21 { .. }, 5) => format!("gyro scale factor {}", XYZ[k]),
+        (ErrorModelKind::Ins21 { .. }, 6) => format!("accelerometer scale factor {}", XYZ[k]),
         _ => format!("state {i}"),
     };
     format!("{name} (state {i})")

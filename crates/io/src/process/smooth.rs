@@ -622,5 +622,12 @@ pub(crate) fn state_columns<const N: usize, L: ErrorLayout<N>>() -> Vec<(String,
     if let Some(i) = L::ODOMETER_SCALE {
         columns[i] = ("odometer_scale_ppm".to_owned(), 1e6);
     }
+    for (first, sensor) in [(L::GYRO_SCALE, "gyro"), (L::ACCEL_SCALE, "accel")] {
+        if let Some(first) = first {
+            for (i, a) in ["x", "y", "z"].iter().enumerate() {
+                columns[first + i] = (format!("{sensor}_scale_{a}_ppm"), 1e6);
+            }
+        }
+    }
     columns
 }

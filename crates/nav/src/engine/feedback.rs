@@ -55,7 +55,8 @@ fn block<T: Real, const N: usize>(dx: &SVector<T, N>, first: usize) -> Vector3<f
 /// Applies the error-state estimate `dx` (layout `L`) to the navigation
 /// solution and the sensor estimates, following the error definitions:
 /// `C ← exp([φ×]) C`, `v ← v − δv`, `r ← r − δr` (NED displacement), each
-/// sensor estimate `← estimate + error` (a sum over the layout's blocks).
+/// sensor estimate (biases, scale factors) `← estimate + error` (a sum over
+/// the layout's blocks).
 /// The caller resets the error state to zero afterwards.
 ///
 /// ```
@@ -96,5 +97,11 @@ pub fn feed_back<T: Real, const N: usize, L: ErrorLayout<N>>(
     }
     if let Some(i) = L::ODOMETER_SCALE {
         corrections.odometer_scale += to_f64(dx[i]);
+    }
+    if let Some(i) = L::GYRO_SCALE {
+        corrections.imu.gyro_scale += block(dx, i);
+    }
+    if let Some(i) = L::ACCEL_SCALE {
+        corrections.imu.accel_scale += block(dx, i);
     }
 }

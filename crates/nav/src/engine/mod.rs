@@ -34,4 +34,4 @@ pub use feedback::{feed_back, SensorCorrections};
 pub use loosely::LooselyCoupled;
 pub use record::ForwardEpoch;
 pub use run::{Epoch, Timed};
-pub use system::{ErrorSystem, InitialUncertainty, Ins15, Ins18};
+pub use system::{ErrorSystem, InitialUncertainty, Ins15, Ins18, Ins21};

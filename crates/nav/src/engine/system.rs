@@ -4,7 +4,9 @@
 use nalgebra::{SMatrix, Vector3};
 
 use crate::earth::Ellipsoid;
-use crate::error_model::{fifteen, ErrorModel15, ErrorModel18, ForcingMean};
+use crate::error_model::{
+    fifteen, twentyone, ErrorModel15, ErrorModel18, ErrorModel21, ForcingMean,
+};
 use crate::imu_spec::ImuSpec;
 use crate::measurement::ErrorLayout;
 use crate::state::NavState;
@@ -197,6 +199,74 @@ impl ErrorSystem<18> for Ins18 {
         let accel =
             (s.accel_bias.powi(2) + markov_var(s.has_accel_markov(), s.accel_markov_sigma)).sqrt();
         fill_block(&mut p, ACCEL_BIAS, accel);
+        p
+    }
+}
+
+/// The 21-state system `[φ, δv, δr, b_g, b_a, s_g, s_a]` of
+/// [`ErrorModel21`]: the 15 states plus gyro and accelerometer scale-factor
+/// errors, random constants or (finite `scale_tau`) first-order
+/// Gauss-Markov processes of steady-state σ `spec.gyro_scale`,
+/// `spec.accel_scale`. Their initial σ are those of the spec too.
+///
+/// ```
+/// use kestrel_nav::ImuSpec;
+/// use kestrel_nav::engine::{ErrorSystem, InitialUncertainty, Ins21};
+/// use kestrel_nav::measurement::ErrorLayout;
+/// assert_eq!(<Ins21 as ErrorLayout<21>>::GYRO_SCALE, Some(15));
+/// let s = Ins21::new(ImuSpec::perfect().with_accel_scale_ppm(500.0), f64::INFINITY);
+/// let p0 = s.initial_covariance(&InitialUncertainty::new(0.01, 0.1, 1.0));
+/// assert!((p0[(18, 18)].sqrt() - 5e-4).abs() < 1e-15);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ins21 {
+    /// The IMU specification; `gyro_scale`, `accel_scale` are the σ of the
+    /// scale-factor errors.
+    pub spec: ImuSpec,
+    /// Correlation time of the scale-factor errors, s (infinite: random
+    /// constants).
+    pub scale_tau: f64,
+}
+
+impl Ins21 {
+    /// The system for an IMU of specification `spec` with scale-factor
+    /// correlation time `scale_tau` (s; `f64::INFINITY` for constants).
+    ///
+    /// ```
+    /// let s = kestrel_nav::engine::Ins21::new(kestrel_nav::ImuSpec::perfect(), 3600.0);
+    /// assert_eq!(s.scale_tau, 3600.0);
+    /// ```
+    pub fn new(spec: ImuSpec, scale_tau: f64) -> Self {
+        Self { spec, scale_tau }
+    }
+}
+
+impl ErrorLayout<21> for Ins21 {
+    const GYRO_BIAS: &'static [usize] = &[twentyone::GYRO_BIAS];
+    const ACCEL_BIAS: &'static [usize] = &[twentyone::ACCEL_BIAS];
+    const GYRO_SCALE: Option<usize> = Some(twentyone::GYRO_SCALE);
+    const ACCEL_SCALE: Option<usize> = Some(twentyone::ACCEL_SCALE);
+}
+
+impl ErrorSystem<21> for Ins21 {
+    type Process = ErrorModel21;
+
+    fn process(&self, earth: &Ellipsoid, nav: &NavState, forcing: &ForcingMean) -> ErrorModel21 {
+        ErrorModel21::from_mean_scaled(earth, &self.spec, self.scale_tau, nav, forcing)
+    }
+
+    fn initial_covariance(&self, nav: &InitialUncertainty) -> SMatrix<f64, 21, 21> {
+        let mut p = SMatrix::zeros();
+        nav.fill(&mut p);
+        let s = &self.spec;
+        let gyro =
+            (s.gyro_bias.powi(2) + markov_var(s.has_gyro_markov(), s.gyro_markov_sigma)).sqrt();
+        let accel =
+            (s.accel_bias.powi(2) + markov_var(s.has_accel_markov(), s.accel_markov_sigma)).sqrt();
+        fill_block(&mut p, twentyone::GYRO_BIAS, gyro);
+        fill_block(&mut p, twentyone::ACCEL_BIAS, accel);
+        fill_block(&mut p, twentyone::GYRO_SCALE, s.gyro_scale);
+        fill_block(&mut p, twentyone::ACCEL_SCALE, s.accel_scale);
         p
     }
 }

@@ -35,6 +35,10 @@ pub struct ForcingMean {
     f_sum: Vector3<f64>,
     w_sum: Vector3<f64>,
     c_sum: Matrix3<f64>,
+    /// `Σ C_b^n diag(ω_ib^b) dt` and `Σ C_b^n diag(f^b) dt`: how gyro and
+    /// accelerometer scale-factor errors enter over the interval.
+    cw_sum: Matrix3<f64>,
+    cf_sum: Matrix3<f64>,
     dt: f64,
     /// `C_b^n` after the last added step, kept across [`clear`](Self::clear)
     /// for the trapezoidal mean of the next step.
@@ -58,8 +62,40 @@ impl ForcingMean {
         self.f_sum += ins.f_ned() * dt;
         self.w_sum += ins.omega_ib_body() * dt;
         self.c_sum += (start + c) * (0.5 * dt);
+        let w = ins.omega_ib_body();
+        let f_body = c.transpose() * ins.f_ned();
+        self.cw_sum += c * Matrix3::from_diagonal(&w) * dt;
+        self.cf_sum += c * Matrix3::from_diagonal(&f_body) * dt;
         self.dt += dt;
         self.last_c = Some(c);
+    }
+
+    /// The mean of `C_b^n diag(ω_ib^b)`: the attitude-error rate per unit
+    /// gyro scale-factor error (zero when empty).
+    ///
+    /// ```
+    /// assert_eq!(kestrel_nav::error_model::ForcingMean::default().gyro_scale_gain()[(0, 0)], 0.0);
+    /// ```
+    pub fn gyro_scale_gain(&self) -> Matrix3<f64> {
+        if self.dt > 0.0 {
+            self.cw_sum / self.dt
+        } else {
+            Matrix3::zeros()
+        }
+    }
+
+    /// The mean of `C_b^n diag(f^b)`: the velocity-error rate per unit
+    /// accelerometer scale-factor error (zero when empty).
+    ///
+    /// ```
+    /// assert_eq!(kestrel_nav::error_model::ForcingMean::default().accel_scale_gain()[(2, 2)], 0.0);
+    /// ```
+    pub fn accel_scale_gain(&self) -> Matrix3<f64> {
+        if self.dt > 0.0 {
+            self.cf_sum / self.dt
+        } else {
+            Matrix3::zeros()
+        }
     }
 
     /// The accumulated time, s.

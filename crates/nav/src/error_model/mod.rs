@@ -19,6 +19,7 @@ pub mod eighteen;
 pub mod fifteen;
 mod forcing;
 mod inertial;
+pub mod twentyone;
 
 pub use discrete::{discretise, ErrorStateModel};
 pub use dynamics::nav_error_dynamics;
@@ -26,3 +27,4 @@ pub use eighteen::ErrorModel18;
 pub use fifteen::ErrorModel15;
 pub use forcing::ForcingMean;
 pub use inertial::InertialLayout;
+pub use twentyone::ErrorModel21;

@@ -19,7 +19,7 @@ use super::federated::federated;
 use super::record::{Describe, EpochRecord};
 use super::run::Job;
 use super::summary::RunSummary;
-use crate::engine::{Ins15, Ins18};
+use crate::engine::{Ins15, Ins18, Ins21};
 use crate::measurement::{GnssAntenna, Odometer};
 use crate::odometer::{FuzzyOdometer, InsOdometer16, MaxThreshold, ScaleFactorProcess};
 use crate::scenario::{
@@ -265,6 +265,11 @@ impl<C: FnMut(&EpochRecord)> FilterLoop<6> for Scenario6<'_, C> {
                 let g = GnssPositionVelocity(gnss_aiding(&job)?);
                 job.run(Ins18::new(s.imu_model), f, g)
             }
+            ErrorModelKind::Ins21 { scale_tau } => {
+                let f = ekf::<21, _>(&job, adapter, fade)?;
+                let g = GnssPositionVelocity(gnss_aiding(&job)?);
+                job.run(Ins21::new(s.imu_model, scale_tau), f, g)
+            }
             ErrorModelKind::Odometer16 { .. } => Err(gnss_incompatible(&job)),
         }
     }
@@ -298,6 +303,11 @@ impl<C: FnMut(&EpochRecord)> FilterLoop<9> for Scenario9<'_, C> {
                 let g = attitude_aiding(&job)?;
                 job.run(Ins18::new(s.imu_model), f, g)
             }
+            ErrorModelKind::Ins21 { scale_tau } => {
+                let f = ekf::<21, _>(&job, adapter, fade)?;
+                let g = attitude_aiding(&job)?;
+                job.run(Ins21::new(s.imu_model, scale_tau), f, g)
+            }
             ErrorModelKind::Odometer16 { .. } => Err(gnss_incompatible(&job)),
         }
     }
@@ -308,7 +318,7 @@ impl<C: FnMut(&EpochRecord)> FilterLoop<9> for Scenario9<'_, C> {
 }
 
 fn gnss_incompatible(job: &Job<'_, impl FnMut(&EpochRecord)>) -> RunError {
-    job.incompatible("GNSS filters need the 15- or 18-state model and a GNSS measurement")
+    job.incompatible("GNSS filters need the 15-, 18- or 21-state model and a GNSS measurement")
 }
 
 fn odometer_incompatible(job: &Job<'_, impl FnMut(&EpochRecord)>) -> RunError {

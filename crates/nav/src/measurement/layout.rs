@@ -31,6 +31,12 @@ pub trait ErrorLayout<const N: usize> {
     const ACCEL_BIAS: &'static [usize];
     /// Index of the odometer scale-factor error (ratio), if the state has one.
     const ODOMETER_SCALE: Option<usize> = None;
+    /// First index of the 3-block of gyro scale-factor errors (body,
+    /// ratio), if the state has one.
+    const GYRO_SCALE: Option<usize> = None;
+    /// First index of the 3-block of accelerometer scale-factor errors
+    /// (body, ratio), if the state has one.
+    const ACCEL_SCALE: Option<usize> = None;
 }
 
 /// Whether layout `L` fits in `N` states without overlapping the navigation
@@ -41,6 +47,14 @@ pub(crate) const fn fits<const N: usize, L: ErrorLayout<N>>() -> bool {
         && blocks_fit(L::ACCEL_BIAS, N)
         && match L::ODOMETER_SCALE {
             Some(i) => i >= 9 && i < N,
+            None => true,
+        }
+        && match L::GYRO_SCALE {
+            Some(i) => i >= 9 && i + 3 <= N,
+            None => true,
+        }
+        && match L::ACCEL_SCALE {
+            Some(i) => i >= 9 && i + 3 <= N,
             None => true,
         }
 }

@@ -165,6 +165,8 @@ pub fn scenario_000() -> Scenario {
                 gyro_markov: Vector3::repeat(deg_per_h(0.02)),
                 accel_bias: Vector3::repeat(ug(100.0)),
                 odometer_scale: 0.0,
+                gyro_scale: Vector3::zeros(),
+                accel_scale: Vector3::zeros(),
             },
             r: MeasurementNoise::gnss(Vector3::repeat(5.0), Vector3::repeat(0.3)),
             lever_arm: Vector3::zeros(),

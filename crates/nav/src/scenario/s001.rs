@@ -104,6 +104,8 @@ pub fn scenario_001() -> Scenario {
                 gyro_markov: Vector3::zeros(),
                 accel_bias: Vector3::repeat(mg(10.0)),
                 odometer_scale: 0.0,
+                gyro_scale: Vector3::zeros(),
+                accel_scale: Vector3::zeros(),
             },
             r: MeasurementNoise::gnss(pos_std, vel_std),
             lever_arm: Vector3::zeros(),

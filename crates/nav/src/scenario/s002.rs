@@ -283,6 +283,8 @@ pub fn scenario_002() -> Scenario {
                 gyro_markov: Vector3::zeros(),
                 accel_bias: Vector3::repeat(datasheet.accel_bias),
                 odometer_scale: 0.0,
+                gyro_scale: Vector3::zeros(),
+                accel_scale: Vector3::zeros(),
             },
             r: MeasurementNoise::gnss(pos_std, vel_std),
             lever_arm,

@@ -155,6 +155,8 @@ pub fn scenario_003() -> Scenario {
                 gyro_markov: Vector3::zeros(),
                 accel_bias: Vector3::repeat(ug(100.0)),
                 odometer_scale: 0.005,
+                gyro_scale: Vector3::zeros(),
+                accel_scale: Vector3::zeros(),
             },
             r: MeasurementNoise {
                 position: None,

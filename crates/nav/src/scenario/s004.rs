@@ -170,6 +170,8 @@ pub fn scenario_004() -> Scenario {
                 gyro_markov,
                 accel_bias: v3(ug(10.0), ug(10.0), ug(15.0)),
                 odometer_scale: 0.0,
+                gyro_scale: Vector3::zeros(),
+                accel_scale: Vector3::zeros(),
             },
             r: MeasurementNoise {
                 position: Some(pos_std),

@@ -21,6 +21,13 @@ pub enum ErrorModelKind {
         /// Correlation time of the scale-factor error, s.
         scale_tau: f64,
     },
+    /// 21 states: the 15 plus gyro and accelerometer scale-factor errors
+    /// (random constants for an infinite `scale_tau`, else first-order
+    /// Markov).
+    Ins21 {
+        /// Correlation time of the scale-factor errors, s.
+        scale_tau: f64,
+    },
 }
 
 impl ErrorModelKind {
@@ -35,6 +42,7 @@ impl ErrorModelKind {
             Self::Ins15 => 15,
             Self::Ins18 => 18,
             Self::Odometer16 { .. } => 16,
+            Self::Ins21 { .. } => 21,
         }
     }
 }
@@ -107,6 +115,10 @@ pub struct InitialUncertainty {
     pub accel_bias: Vector3<f64>,
     /// Odometer scale-factor error σ (16-state model only), ratio.
     pub odometer_scale: f64,
+    /// Gyro scale-factor error σ (21-state model only), ratio.
+    pub gyro_scale: Vector3<f64>,
+    /// Accelerometer scale-factor error σ (21-state model only), ratio.
+    pub accel_scale: Vector3<f64>,
 }
 
 impl InitialUncertainty {
@@ -133,6 +145,11 @@ impl InitialUncertainty {
             ErrorModelKind::Odometer16 { .. } => {
                 v.extend(self.accel_bias.iter());
                 v.push(self.odometer_scale);
+            }
+            ErrorModelKind::Ins21 { .. } => {
+                v.extend(self.accel_bias.iter());
+                v.extend(self.gyro_scale.iter());
+                v.extend(self.accel_scale.iter());
             }
         }
         v
