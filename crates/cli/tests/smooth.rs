@@ -120,13 +120,33 @@ fn smoothing_cuts_the_outage_drift_and_stays_consistent() {
     assert_eq!(fwd.lines().count(), smo.lines().count());
     assert_eq!(fwd.lines().last(), smo.lines().last());
     assert_ne!(fwd.lines().nth(30_000), smo.lines().nth(30_000));
-    let std = lines("smoothed_std.csv");
-    assert!(std.starts_with(
+    // σ and IMU errors per covariance epoch (10 Hz): the smoothed σ is
+    // never above the forward one (Pˢ ≤ P⁺), and the files have the same
+    // rows.
+    let (fstd, sstd) = (lines("result_std.csv"), lines("smoothed_std.csv"));
+    assert!(sstd.starts_with(
         "time_s,att_n_deg,att_e_deg,att_d_deg,vel_n_mps,vel_e_mps,vel_d_mps,pos_n_m,pos_e_m,\
          pos_d_m,gyro_bias_x_deg_per_h,gyro_bias_y_deg_per_h,gyro_bias_z_deg_per_h,\
          accel_bias_x_mg,accel_bias_y_mg,accel_bias_z_mg\n"
     ));
-    assert_eq!(std.lines().count(), fwd.lines().count());
+    assert_eq!(fstd.lines().count(), 12_001);
+    assert_eq!(sstd.lines().count(), 12_001);
+    for (f, s) in fstd.lines().zip(sstd.lines()).skip(1) {
+        let parse = |l: &str| -> Vec<f64> { l.split(',').map(|v| v.parse().unwrap()).collect() };
+        let (f, s) = (parse(f), parse(s));
+        assert_eq!(f[0], s[0]);
+        for k in 1..f.len() {
+            assert!(s[k] <= f[k] * (1.0 + 1e-9), "time {}: column {k}: {} > {}", f[0], s[k], f[k]);
+        }
+    }
+    let errors = lines("smoothed_imu_errors.txt");
+    assert!(errors.starts_with(
+        "# time_s gyro_bias_x_deg_per_h gyro_bias_y_deg_per_h gyro_bias_z_deg_per_h \
+         accel_bias_x_mg accel_bias_y_mg accel_bias_z_mg gyro_scale_x_ppm gyro_scale_y_ppm \
+         gyro_scale_z_ppm accel_scale_x_ppm accel_scale_y_ppm accel_scale_z_ppm\n"
+    ));
+    assert_eq!(errors.lines().count(), 12_001);
+    assert_eq!(lines("result_imu_errors.csv").lines().count(), 12_001);
     let leftovers: Vec<_> = std::fs::read_dir(&out)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())

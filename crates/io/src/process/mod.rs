@@ -24,6 +24,7 @@ mod progress;
 mod schedule;
 mod sink;
 mod smooth;
+mod state_files;
 mod stats;
 pub mod timing;
 pub mod units;
@@ -97,8 +98,8 @@ pub struct Inputs {
     /// is an error.
     pub also_written: Vec<String>,
     /// Also run the RTS smoother over the forward pass (`--smooth`):
-    /// writes `smoothed.nav`, `smoothed.csv`, `smoothed_std.csv` and, with
-    /// a truth, `errors_smoothed.csv`.
+    /// writes `smoothed.nav`, `smoothed.csv`, `smoothed_imu_errors.*`,
+    /// `smoothed_std.*` and, with a truth, `errors_smoothed.csv`.
     pub smooth: bool,
 }
 
@@ -337,7 +338,7 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
                 earth: settings.earth,
                 nav_path: inputs.out.join("smoothed.nav"),
                 csv_path: inputs.out.join("smoothed.csv"),
-                std_path: inputs.out.join("smoothed_std.csv"),
+                out: inputs.out.clone(),
                 evaluation,
             },
         )?)
@@ -388,6 +389,9 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
         smoother,
         smoothed: None,
         smoothed_traces: (Vec::new(), Vec::new()),
+        out: inputs.out.clone(),
+        output_interval: settings.output_interval,
+        states: None,
     };
     let outcome = dispatch(&settings, layout, &mut job);
     // Nothing compared is an error, never a row of zeros.
@@ -404,9 +408,13 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
         ))),
         _ => Ok(()),
     });
+    let states = job.states.take().map(|s| s.finish(outcome.is_ok()));
     job.sink.finish(outcome.is_ok())?;
     outcome?;
     let mut files = vec![nav_path, csv_path];
+    if let Some(s) = states {
+        files.extend(s?);
+    }
     let (mut errors, mut aiding_errors, mut drift) = (None, None, Vec::new());
     let mut consistency = None;
     let mut traces = None;
@@ -463,6 +471,9 @@ fn gnss_gap_threshold(path: &Path, settings: &Settings) -> Option<f64> {
 
 /// The names written in `--out`: the run's own and the caller's `extra`.
 fn output_names(extra: &[String]) -> Vec<String> {
+    let states = ["result", "smoothed"]
+        .into_iter()
+        .flat_map(state_files::StateFiles::names);
     [
         "result.nav",
         "result.csv",
@@ -471,7 +482,6 @@ fn output_names(extra: &[String]) -> Vec<String> {
         "drift.csv",
         "smoothed.nav",
         "smoothed.csv",
-        "smoothed_std.csv",
         "errors_smoothed.csv",
         ".smoother-epochs.partial",
         ".smoother-samples.partial",
@@ -479,6 +489,7 @@ fn output_names(extra: &[String]) -> Vec<String> {
     ]
     .map(String::from)
     .into_iter()
+    .chain(states)
     .chain(extra.iter().cloned())
     .collect()
 }

@@ -49,6 +49,12 @@ pub(crate) struct Job<'p> {
     pub smoother: Option<super::smooth::ForwardRecord>,
     /// What the smoother did.
     pub smoothed: Option<super::smooth::SmoothedReport>,
+    /// The output folder and interval (for the state files).
+    pub out: std::path::PathBuf,
+    pub output_interval: f64,
+    /// The forward run's IMU error estimates and σ (created with the
+    /// engine's layout).
+    pub states: Option<super::state_files::StateFiles>,
     /// The smoothed solution's errors, thinned (with a truth).
     pub smoothed_traces: super::smooth::SmoothedTraces,
 }
@@ -337,6 +343,11 @@ where
     A: PriorAdapter<f64>,
 {
     let label = job.sink.label;
+    job.states = Some(super::state_files::StateFiles::create::<N, S>(
+        &job.out,
+        "result",
+        job.output_interval,
+    )?);
     let mut schedule = Schedule::new();
     let mut previous = (job.start, None);
     let mut timing = job.start_timing()?;
@@ -473,7 +484,15 @@ where
             other => other,
         })?;
     if let Some(r) = job.smoother.as_mut() {
-        r.sample(engine.solution())?;
+        r.sample(engine.solution(), engine.corrections())?;
+    }
+    // A covariance epoch (propagated or updated at this sample): the
+    // filter's estimates and σ, at the output interval.
+    if let Some(states) = job.states.as_mut() {
+        if engine.pending_interval() == 0.0 && states.due(t) {
+            let sigma = engine.std_devs();
+            states.row(t, engine.corrections(), sigma.iter().copied())?;
+        }
     }
     Ok(following)
 }

@@ -45,13 +45,13 @@ use kestrel::nalgebra::{Matrix3, Quaternion, SMatrix, SVector, UnitQuaternion, V
 use kestrel::nav::engine::{feed_back, ForwardEpoch, SensorCorrections};
 use kestrel::nav::experiment::EpochRecord;
 use kestrel::nav::measurement::ErrorLayout;
-use kestrel::nav::{Ellipsoid, Geodetic, NavState};
+use kestrel::nav::{Ellipsoid, Geodetic, ImuBiases, NavState};
 use kestrel::smoother::{rts_step, Smoothed};
 use kestrel::Euclidean;
 
 use super::evaluation::Evaluation;
-use super::schedule::Schedule;
 use super::sink::{create_partial, partial_path, settle, Sink, SinkSetup};
+use super::state_files::StateFiles;
 use super::stats::ErrorStats;
 use super::{progress, Consistency, Silent, WindowDrift};
 use crate::Error;
@@ -80,7 +80,8 @@ pub(crate) struct SmoothSetup {
     pub earth: Ellipsoid,
     pub nav_path: PathBuf,
     pub csv_path: PathBuf,
-    pub std_path: PathBuf,
+    /// The output folder (the smoothed estimates and σ go there).
+    pub out: PathBuf,
     pub evaluation: Option<Evaluation>,
 }
 
@@ -182,8 +183,9 @@ const fn epoch_len(n: usize) -> usize {
 }
 
 /// Numbers in one sample record: time, latitude, longitude, height,
-/// velocity, attitude quaternion (w, i, j, k).
-const SAMPLE_LEN: usize = 11;
+/// velocity, attitude quaternion (w, i, j, k), then the sensor corrections
+/// in use (gyro and accelerometer bias and scale factor, odometer scale).
+const SAMPLE_LEN: usize = 11 + 13;
 
 /// Numbers in one correction record: time, correction after and before
 /// feedback, variances, the position block's off-diagonal covariances.
@@ -233,10 +235,12 @@ impl ForwardRecord {
         self.epochs.write(&self.buffer)
     }
 
-    /// Appends the forward solution after an IMU sample.
-    pub(crate) fn sample(&mut self, nav: &NavState) -> Result<(), Error> {
+    /// Appends the forward solution after an IMU sample and the sensor
+    /// corrections in use.
+    pub(crate) fn sample(&mut self, nav: &NavState, c: &SensorCorrections) -> Result<(), Error> {
         let q = nav.att.quaternion();
         let mut b = [0u8; SAMPLE_LEN * 8];
+        let i = &c.imu;
         let values = [
             nav.time,
             nav.pos.lat,
@@ -249,7 +253,13 @@ impl ForwardRecord {
             q.i,
             q.j,
             q.k,
-        ];
+        ]
+        .into_iter()
+        .chain(i.gyro.iter().copied())
+        .chain(i.accel.iter().copied())
+        .chain(i.gyro_scale.iter().copied())
+        .chain(i.accel_scale.iter().copied())
+        .chain([c.odometer_scale]);
         for (chunk, v) in b.chunks_exact_mut(8).zip(values) {
             chunk.copy_from_slice(&v.to_le_bytes());
         }
@@ -361,8 +371,7 @@ impl ForwardRecord {
             evaluation: setup.evaluation.take(),
             progress: progress::Ticker::new(&mut silent, 0.0, 0.0),
         })?;
-        let mut std_file =
-            StdFile::create(&setup.std_path, state_columns::<N, L>(), setup.interval)?;
+        let mut states = StateFiles::create::<N, L>(&setup.out, "smoothed", setup.interval)?;
         let earth = setup.earth;
         let outcome = (|| -> Result<(), Error> {
             let mut fixes = self.fixes.iter().copied().peekable();
@@ -371,11 +380,12 @@ impl ForwardRecord {
             let mut bytes = [0u8; SAMPLE_LEN * 8];
             let mut pending: Option<(NavState, Matrix3<f64>)> = None;
             loop {
-                let nav = match samples.read_exact(&mut bytes) {
+                let read = match samples.read_exact(&mut bytes) {
                     Ok(()) => Some(decode_sample(&bytes)),
                     Err(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => None,
                     Err(e) => return Err(Error::io(&samples_path, e)),
                 };
+                let nav = read.map(|(n, _)| n);
                 // Fixes belong to the sample before the next one's time.
                 if let Some((p, position)) = pending.take() {
                     let next_time = nav.map_or(f64::INFINITY, |n| n.time);
@@ -386,11 +396,14 @@ impl ForwardRecord {
                     }
                     sink.sample(&p, None, Some(&position))?;
                 }
-                let Some(nav) = nav else { break };
+                let Some((nav, mut sensors)) = read else {
+                    break;
+                };
                 while following.as_ref().is_some_and(|f| f.time <= nav.time) {
                     current = following;
                     following = corrections.next()?;
                 }
+                let at_epoch = current.as_ref().is_some_and(|c| c.time == nav.time);
                 let (dx, variance, position) = match (&current, &following) {
                     (Some(c), _) if c.time == nav.time => (c.after, c.variance, c.position),
                     (Some(c), Some(f)) => {
@@ -414,24 +427,22 @@ impl ForwardRecord {
                 // A zero correction (after the last update) leaves the
                 // forward solution bit for bit.
                 if dx.iter().any(|v| *v != 0.0) {
-                    let mut unused = SensorCorrections::default();
-                    feed_back::<f64, N, L>(&dx, &earth, &mut smoothed, &mut unused);
+                    feed_back::<f64, N, L>(&dx, &earth, &mut smoothed, &mut sensors);
                 }
-                std_file.row(&smoothed, &variance)?;
+                if at_epoch && states.due(nav.time) {
+                    let sigma = variance.iter().map(|v| v.max(0.0).sqrt());
+                    states.row(nav.time, &sensors, sigma)?;
+                }
                 pending = Some((smoothed, position));
             }
             Ok(())
         })();
         let finished = sink.finish(outcome.is_ok());
-        let std_done = std_file.finish(outcome.is_ok() && finished.is_ok());
+        let state_files = states.finish(outcome.is_ok() && finished.is_ok());
         outcome?;
         finished?;
-        std_done?;
-        let mut files = vec![
-            setup.nav_path.clone(),
-            setup.csv_path.clone(),
-            setup.std_path.clone(),
-        ];
+        let mut files = vec![setup.nav_path.clone(), setup.csv_path.clone()];
+        files.extend(state_files?);
         let (mut errors, mut drift, mut traces) = (None, Vec::new(), Default::default());
         let mut consistency = None;
         if let Some(e) = sink.evaluation.take() {
@@ -452,15 +463,26 @@ impl ForwardRecord {
     }
 }
 
-fn decode_sample(bytes: &[u8]) -> NavState {
+fn decode_sample(bytes: &[u8]) -> (NavState, SensorCorrections) {
     let mut at = 0;
     let v = take::<SAMPLE_LEN>(bytes, &mut at);
-    NavState {
+    let nav = NavState {
         time: v[0],
         pos: Geodetic::new(v[1], v[2], v[3]),
         vel: Vector3::new(v[4], v[5], v[6]),
         att: UnitQuaternion::new_unchecked(Quaternion::new(v[7], v[8], v[9], v[10])),
-    }
+    };
+    let v3 = |k: usize| Vector3::new(v[k], v[k + 1], v[k + 2]);
+    let c = SensorCorrections {
+        imu: ImuBiases {
+            gyro: v3(11),
+            accel: v3(14),
+            gyro_scale: v3(17),
+            accel_scale: v3(20),
+        },
+        odometer_scale: v[23],
+    };
+    (nav, c)
 }
 
 /// One epoch's smoothed correction.
@@ -534,100 +556,4 @@ impl<const N: usize> Corrections<N> {
             position,
         }))
     }
-}
-
-/// The σ file: one row per output sample, the standard deviation of every
-/// error state in the units of the result.
-pub(crate) struct StdFile {
-    path: PathBuf,
-    writer: BufWriter<File>,
-    line: String,
-    scales: Vec<f64>,
-    interval: f64,
-    schedule: Schedule,
-}
-
-impl StdFile {
-    /// A σ file with `columns` (name, scale from SI), a row every
-    /// `interval` seconds (0: every sample), like the result file.
-    pub(crate) fn create(
-        path: &Path,
-        columns: Vec<(String, f64)>,
-        interval: f64,
-    ) -> Result<Self, Error> {
-        let mut writer = BufWriter::with_capacity(1 << 16, create_partial(path)?);
-        let header: Vec<&str> = columns.iter().map(|(n, _)| n.as_str()).collect();
-        writeln!(writer, "time_s,{}", header.join(",")).map_err(|e| Error::io(path, e))?;
-        Ok(Self {
-            path: path.to_path_buf(),
-            writer,
-            line: String::with_capacity(512),
-            scales: columns.into_iter().map(|(_, s)| s).collect(),
-            interval,
-            schedule: Schedule::new(),
-        })
-    }
-
-    pub(crate) fn row<const N: usize>(
-        &mut self,
-        nav: &NavState,
-        variance: &SVector<f64, N>,
-    ) -> Result<(), Error> {
-        if self.interval > 0.0 && !self.schedule.due(nav.time, 1.0 / self.interval) {
-            return Ok(());
-        }
-        self.line.clear();
-        // Ryū, as the result file: `{}` would double the cost of the run.
-        let mut buffer = ryu::Buffer::new();
-        self.line.push_str(buffer.format(nav.time));
-        for (v, s) in variance.iter().zip(&self.scales) {
-            self.line.push(',');
-            self.line.push_str(buffer.format(v.max(0.0).sqrt() * s));
-        }
-        self.line.push('\n');
-        self.writer
-            .write_all(self.line.as_bytes())
-            .map_err(|e| Error::io(&self.path, e))
-    }
-
-    pub(crate) fn finish(mut self, ok: bool) -> Result<(), Error> {
-        let flushed = self.writer.flush().map_err(|e| Error::io(&self.path, e));
-        settle(&self.path, ok && flushed.is_ok())?;
-        flushed
-    }
-}
-
-/// The σ columns of an `N`-state error layout `L`: name with unit, and the
-/// factor from the state's SI unit.
-pub(crate) fn state_columns<const N: usize, L: ErrorLayout<N>>() -> Vec<(String, f64)> {
-    let deg = 180.0 / std::f64::consts::PI;
-    let mut columns: Vec<(String, f64)> = (0..N).map(|i| (format!("state{i}"), 1.0)).collect();
-    for (i, a) in ["n", "e", "d"].iter().enumerate() {
-        columns[i] = (format!("att_{a}_deg"), deg);
-        columns[3 + i] = (format!("vel_{a}_mps"), 1.0);
-        columns[6 + i] = (format!("pos_{a}_m"), 1.0);
-    }
-    let groups = [
-        (L::GYRO_BIAS, "gyro", "deg_per_h", deg * 3600.0),
-        (L::ACCEL_BIAS, "accel", "mg", 1e3 / super::units::G0),
-    ];
-    for (blocks, sensor, unit, scale) in groups {
-        for (k, &first) in blocks.iter().enumerate() {
-            let kind = if k == 0 { "bias" } else { "markov" };
-            for (i, a) in ["x", "y", "z"].iter().enumerate() {
-                columns[first + i] = (format!("{sensor}_{kind}_{a}_{unit}"), scale);
-            }
-        }
-    }
-    if let Some(i) = L::ODOMETER_SCALE {
-        columns[i] = ("odometer_scale_ppm".to_owned(), 1e6);
-    }
-    for (first, sensor) in [(L::GYRO_SCALE, "gyro"), (L::ACCEL_SCALE, "accel")] {
-        if let Some(first) = first {
-            for (i, a) in ["x", "y", "z"].iter().enumerate() {
-                columns[first + i] = (format!("{sensor}_scale_{a}_ppm"), 1e6);
-            }
-        }
-    }
-    columns
 }
