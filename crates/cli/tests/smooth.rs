@@ -136,7 +136,13 @@ fn smoothing_cuts_the_outage_drift_and_stays_consistent() {
         let (f, s) = (parse(f), parse(s));
         assert_eq!(f[0], s[0]);
         for k in 1..f.len() {
-            assert!(s[k] <= f[k] * (1.0 + 1e-9), "time {}: column {k}: {} > {}", f[0], s[k], f[k]);
+            assert!(
+                s[k] <= f[k] * (1.0 + 1e-9),
+                "time {}: column {k}: {} > {}",
+                f[0],
+                s[k],
+                f[k]
+            );
         }
     }
     let errors = lines("smoothed_imu_errors.txt");
