@@ -182,3 +182,38 @@ fn a_failed_smoothed_run_leaves_nothing_behind() {
     assert!(left.is_empty(), "{left:?}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Without a truth the run still draws the track, the IMU error estimates
+/// and the σ (forward and smoothed), and no error figure.
+#[test]
+fn figures_without_a_truth() {
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("../io/examples/data");
+    let out = tmp_dir("figures");
+    let report = process(&ProcessArgs {
+        imu: data.join("imu.txt"),
+        gnss: Some(data.join("gnss.txt")),
+        odo: false,
+        odometer: None,
+        truth: None,
+        config: data.join("process.toml"),
+        out: out.clone(),
+        outages: Vec::new(),
+        no_plots: false,
+        smooth: true,
+    })
+    .unwrap();
+    for stem in ["track", "imu_errors", "std"] {
+        for ext in ["png", "svg"] {
+            let f = out.join(format!("{stem}.{ext}"));
+            assert!(report.files.contains(&f), "{f:?} not reported");
+            assert!(std::fs::metadata(&f).unwrap().len() > 1000, "{f:?}");
+        }
+    }
+    for stem in ["position", "nees", "adaptation"] {
+        assert!(
+            !out.join(format!("{stem}.png")).exists(),
+            "{stem} drawn without a truth"
+        );
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+}

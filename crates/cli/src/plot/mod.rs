@@ -24,15 +24,18 @@ mod font;
 mod legend;
 mod palette;
 mod panels;
+mod process_figures;
 mod range;
 mod thin;
 mod ticks;
+mod track;
 
 use std::path::{Path, PathBuf};
 
 use kestrel::nav::experiment::{EpochRecord, PositionAxes};
 
 pub use chi2::chi2_quantile;
+pub use process_figures::{process_figures, ProcessPlots, SolutionErrors, PROCESS_FIGURES};
 pub use thin::{split_at_gaps, thin};
 
 use crate::CliError;
@@ -180,4 +183,38 @@ pub fn figures_of(
         written.extend(figure.save(dir, stem)?);
     }
     Ok(written)
+}
+
+/// The adapter-activity figure alone (`adaptation.png`, `.svg`): λ,
+/// inflation, α₁ and the NIS of `aiding`.
+///
+/// # Errors
+/// As [`error_figures`].
+pub fn adaptation_figure(
+    dir: &Path,
+    title: &str,
+    aiding: &[FilterTrace<'_>],
+    options: &FigureOptions,
+) -> Result<Vec<PathBuf>, CliError> {
+    std::fs::create_dir_all(dir).map_err(|e| CliError::io(dir, e))?;
+    let nis_bound = options.nis_dof.and_then(|dof| {
+        let value = chi2_quantile(dof, options.nis_probability)?;
+        Some(Reference {
+            value,
+            label: format!(
+                "χ² bound, {dof} dof, p = {} ({value:.2})",
+                options.nis_probability
+            ),
+        })
+    });
+    let figure = Figure {
+        title: if title.is_empty() {
+            "adapter activity".to_owned()
+        } else {
+            format!("{title}: adapter activity")
+        },
+        filters: aiding.iter().map(|t| t.label.to_string()).collect(),
+        panels: panels::adaptation(aiding, nis_bound),
+    };
+    figure.save(dir, "adaptation")
 }

@@ -8,7 +8,10 @@ use std::path::PathBuf;
 use clap::Args;
 use kestrel_io::process::{Inputs, OdometerInput, Outage, ProcessReport};
 
-use crate::plot::{figures_of, FigureOptions, FilterTrace, FIGURES};
+use crate::plot::{
+    adaptation_figure, process_figures, FigureOptions, FilterTrace, ProcessPlots, SolutionErrors,
+    PROCESS_FIGURES,
+};
 use crate::CliError;
 
 pub use kestrel_io::process::summary;
@@ -96,8 +99,9 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
         config: args.config.clone(),
         out: args.out.clone(),
         outages: args.outages.clone(),
-        also_written: FIGURES
+        also_written: PROCESS_FIGURES
             .iter()
+            .chain(&["adaptation"])
             .flat_map(|stem| [format!("{stem}.png"), format!("{stem}.svg")])
             .collect(),
         smooth: args.smooth,
@@ -105,29 +109,46 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
     let mut bar = progress::Bar::new();
     let run = kestrel_io::process::process(&inputs, &mut bar)?;
     let mut report = run.report;
-    if let (Some(traces), false) = (run.traces, args.no_plots) {
-        let mut errors = vec![FilterTrace {
+    if args.no_plots {
+        return Ok(report);
+    }
+    let mut solutions = Vec::new();
+    if let Some(t) = &run.traces {
+        solutions.push(SolutionErrors {
             label: report.filter,
-            records: &traces.every,
-        }];
+            errors: &t.every,
+            sigma: &t.every_sigma,
+            nees: &t.nees,
+        });
         if report.smoothed.is_some() {
-            errors.push(FilterTrace {
+            solutions.push(SolutionErrors {
                 label: "smoothed",
-                records: &traces.smoothed,
+                errors: &t.smoothed,
+                sigma: &t.smoothed_sigma,
+                nees: &t.smoothed_nees,
             });
         }
+    }
+    let plots = ProcessPlots {
+        title: "kestrel process",
+        axes: report.axes,
+        solutions: &solutions,
+        track: &run.track,
+        states: &run.states,
+    };
+    let mut files = process_figures(&args.out, &plots)?;
+    if let Some(t) = &run.traces {
         let aiding = [FilterTrace {
             label: report.filter,
-            records: &traces.aiding,
+            records: &t.aiding,
         }];
-        report.files.extend(figures_of(
+        files.extend(adaptation_figure(
             &args.out,
             "kestrel process",
-            report.axes,
-            &errors,
             &aiding,
             &FigureOptions::default(),
         )?);
     }
+    report.files.extend(files);
     Ok(report)
 }

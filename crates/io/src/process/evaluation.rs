@@ -24,7 +24,7 @@ use super::stats::Accumulator;
 use crate::gins::{NavReader, RtklibReader, WEEK_SECONDS};
 use crate::output::EpochCsvWriter;
 use crate::{Error, InputError};
-use kestrel::nav::nalgebra::{Matrix3, UnitQuaternion, Vector3};
+use kestrel::nav::nalgebra::{SMatrix, UnitQuaternion, Vector3};
 
 /// Truth times within this many seconds of a sample are the same instant.
 const SAME_TIME: f64 = 1e-6;
@@ -108,6 +108,10 @@ impl Truth {
     }
 }
 
+/// The covariance of the navigation errors `[φ, δv, δr]` (NED; rad, m/s,
+/// m): the first 9 × 9 block of the error-state covariance.
+pub(crate) type NavCovariance = SMatrix<f64, 9, 9>;
+
 /// Records kept for the plots: every `stride`-th, the stride doubling
 /// whenever the store is full, so memory stays bounded.
 #[derive(Debug)]
@@ -128,7 +132,20 @@ impl<R> Default for Thinned<R> {
 }
 
 impl<R> Thinned<R> {
-    fn push(&mut self, r: R) {
+    /// Whether the next [`push`](Self::push) would keep its record (so a
+    /// costly record need only be built then; else call
+    /// [`skip`](Self::skip)).
+    pub(crate) fn wants(&self) -> bool {
+        self.seen.is_multiple_of(self.stride.max(1))
+    }
+
+    /// Counts a record not built (one [`wants`](Self::wants) declined).
+    pub(crate) fn skip(&mut self) {
+        self.stride = self.stride.max(1);
+        self.seen += 1;
+    }
+
+    pub(crate) fn push(&mut self, r: R) {
         self.stride = self.stride.max(1);
         if self.seen.is_multiple_of(self.stride) {
             if self.records.len() == PLOT_RECORDS {
@@ -154,13 +171,18 @@ pub(crate) struct Evaluation {
     /// The GNSS antenna's lever arm when the truth is at the antenna.
     antenna: Option<Vector3<f64>>,
     previous: Option<NavState>,
-    /// The position covariance (NED, m²) at the previous sample.
-    previous_covariance: Option<Matrix3<f64>>,
+    /// The navigation-error covariance (φ, δv, δr; NED) at the previous
+    /// sample.
+    previous_covariance: Option<NavCovariance>,
     /// The position NEES over the compared epochs (when the caller gives
     /// covariances).
     pub consistency: Consistency,
     /// The NEES at the compared epochs, thinned for the plots.
     pub nees: Thinned<(f64, f64)>,
+    /// The σ of the navigation errors (attitude rad, velocity m/s,
+    /// position m; NED) at the compared epochs, thinned in step with
+    /// `errors` (NaN without a covariance).
+    pub sigmas: Thinned<[f64; 9]>,
     csv: EpochCsvWriter<BufWriter<File>>,
     csv_path: PathBuf,
     /// Over every compared epoch, and over the aiding epochs only.
@@ -200,6 +222,7 @@ impl Evaluation {
             previous_covariance: None,
             consistency: Consistency::default(),
             nees: Thinned::default(),
+            sigmas: Thinned::default(),
             csv,
             csv_path: s.csv_path,
             all: Accumulator::new(s.axes),
@@ -218,7 +241,7 @@ impl Evaluation {
         &mut self,
         nav: &NavState,
         update: Option<Adaptation>,
-        covariance: Option<&Matrix3<f64>>,
+        covariance: Option<&NavCovariance>,
     ) -> Result<(), Error> {
         let t = nav.time;
         while let Some(reference) = self.truth.peek()? {
@@ -235,7 +258,7 @@ impl Evaluation {
                 let between = interpolate(&p, nav, truth.time);
                 let dr = self.compare(&between, &reference, None)?;
                 let w = (truth.time - p.time) / (t - p.time);
-                let cov = match (self.previous_covariance, covariance) {
+                let cov = match (&self.previous_covariance, covariance) {
                     (Some(a), Some(b)) => Some(a + (b - a) * w),
                     _ => None,
                 };
@@ -251,11 +274,15 @@ impl Evaluation {
 
     /// The NEES of the position error `dr` (NED) at `t` with covariance
     /// `p`, if there is one.
-    fn check(&mut self, t: f64, dr: &Vector3<f64>, p: Option<&Matrix3<f64>>) {
-        let Some(nees) = p.and_then(|p| self.consistency.add(dr, p)) else {
-            return;
-        };
-        self.nees.push((t, nees));
+    fn check(&mut self, t: f64, dr: &Vector3<f64>, p: Option<&NavCovariance>) {
+        let sigma = p.map_or([f64::NAN; 9], |p| {
+            core::array::from_fn(|i| p[(i, i)].max(0.0).sqrt())
+        });
+        self.sigmas.push(sigma);
+        let position = p.map(|p| p.fixed_view::<3, 3>(6, 6).into_owned());
+        if let Some(nees) = position.and_then(|p| self.consistency.add(dr, &p)) {
+            self.nees.push((t, nees));
+        }
     }
 
     fn compare(

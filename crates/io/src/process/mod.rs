@@ -27,6 +27,7 @@ mod smooth;
 mod state_files;
 mod stats;
 pub mod timing;
+mod traces;
 pub mod units;
 
 use std::path::{Path, PathBuf};
@@ -45,6 +46,7 @@ pub use progress::{Progress, Silent};
 pub use sink::RESULT_CSV_HEADER;
 pub use smooth::SmoothedReport;
 pub use stats::{ErrorStats, MotionStats, SumOfSquares};
+pub use traces::{StateRow, StateTraces, Track};
 
 use dispatch::{dispatch, GnssLayout};
 use drift::DriftTable;
@@ -133,9 +135,15 @@ pub struct ErrorTraces {
     pub every: Vec<EpochRecord>,
     /// At the aiding epochs, after the update.
     pub aiding: Vec<EpochRecord>,
+    /// The σ of the navigation errors at the epochs of `every` (attitude
+    /// rad, velocity m/s, position m; north, east, down), for ±3σ
+    /// envelopes.
+    pub every_sigma: Vec<[f64; 9]>,
     /// The smoothed solution's errors at every compared truth epoch (empty
     /// without `smooth`).
     pub smoothed: Vec<EpochRecord>,
+    /// The σ at the epochs of `smoothed`.
+    pub smoothed_sigma: Vec<[f64; 9]>,
     /// The forward filter's position NEES `(time, NEES)` at the compared
     /// epochs, thinned like the errors.
     pub nees: Vec<(f64, f64)>,
@@ -143,14 +151,18 @@ pub struct ErrorTraces {
     pub smoothed_nees: Vec<(f64, f64)>,
 }
 
-/// What [`process`] returns: the report and, with a truth, the error
-/// traces.
+/// What [`process`] returns: the report, the track and the filter's
+/// estimates over time and, with a truth, the error traces.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Processed {
     /// Counts, statistics and files.
     pub report: ProcessReport,
     /// The errors over time (with a truth file).
     pub traces: Option<ErrorTraces>,
+    /// The horizontal track, the fixes and the outages.
+    pub track: Track,
+    /// The IMU error estimates and σ over time.
+    pub states: StateTraces,
 }
 
 /// What a run did.
@@ -388,7 +400,8 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
         pending: std::collections::VecDeque::new(),
         smoother,
         smoothed: None,
-        smoothed_traces: (Vec::new(), Vec::new()),
+        smoothed_traces: smooth::SmoothedTraces::default(),
+        fix_track: evaluation::Thinned::default(),
         out: inputs.out.clone(),
         output_interval: settings.output_interval,
         states: None,
@@ -408,7 +421,13 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
         ))),
         _ => Ok(()),
     });
-    let states = job.states.take().map(|s| s.finish(outcome.is_ok()));
+    let mut state_traces = StateTraces::default();
+    let states = job.states.take().map(|mut s| {
+        state_traces.estimates = s.estimate_names.clone();
+        state_traces.sigmas = s.sigma_names.clone();
+        state_traces.forward = std::mem::take(&mut s.rows.records);
+        s.finish(outcome.is_ok())
+    });
     job.sink.finish(outcome.is_ok())?;
     outcome?;
     let mut files = vec![nav_path, csv_path];
@@ -427,10 +446,12 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
         files.extend(write_errors(&inputs.out, &e, &drift)?);
         traces = Some(ErrorTraces {
             every: e.errors.records,
+            every_sigma: e.sigmas.records,
             aiding: e.updates.records,
-            smoothed: std::mem::take(&mut job.smoothed_traces.0),
+            smoothed: std::mem::take(&mut job.smoothed_traces.errors),
+            smoothed_sigma: std::mem::take(&mut job.smoothed_traces.sigmas),
             nees: e.nees.records,
-            smoothed_nees: std::mem::take(&mut job.smoothed_traces.1),
+            smoothed_nees: std::mem::take(&mut job.smoothed_traces.nees),
         });
     }
     let report = ProcessReport {
@@ -453,7 +474,30 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
         files,
         smoothed: job.smoothed.take(),
     };
-    Ok(Processed { report, traces })
+    state_traces.smoothed = std::mem::take(&mut job.smoothed_traces.states);
+    // The track in metres from the initial position.
+    let local = |points: &[(f64, f64, f64)]| -> Vec<(f64, f64, f64)> {
+        points
+            .iter()
+            .map(|&(t, lat, lon)| {
+                let here = kestrel::nav::Geodetic::new(lat, lon, settings.start.pos.h);
+                let d = settings.earth.ned_offset(&settings.start.pos, &here);
+                (t, d.x, d.y)
+            })
+            .collect()
+    };
+    let track = Track {
+        forward: local(&job.sink.track.records),
+        smoothed: local(&job.smoothed_traces.track),
+        fixes: local(&job.fix_track.records),
+        outages: inputs.outages.iter().map(|o| (o.start, o.end)).collect(),
+    };
+    Ok(Processed {
+        report,
+        traces,
+        track,
+        states: state_traces,
+    })
 }
 
 /// 1.5 × the median interval of the first 21 intervals of the GNSS file:

@@ -55,6 +55,8 @@ pub(crate) struct Job<'p> {
     /// The forward run's IMU error estimates and σ (created with the
     /// engine's layout).
     pub states: Option<super::state_files::StateFiles>,
+    /// The fixes used: (time, latitude, longitude), thinned.
+    pub fix_track: super::evaluation::Thinned<(f64, f64, f64)>,
     /// The smoothed solution's errors, thinned (with a truth).
     pub smoothed_traces: super::smooth::SmoothedTraces,
 }
@@ -293,6 +295,7 @@ impl Job<'_> {
             if let Some(r) = self.smoother.as_mut() {
                 r.fix(fix.time);
             }
+            self.fix_track.push((fix.time, fix.pos.lat, fix.pos.lon));
             return Ok(Some((fix, line)));
         }
     }
@@ -467,13 +470,14 @@ where
             record_epoch(job, engine)?;
         }
     }
-    // The position block of the error covariance, for the NEES (only
-    // with a truth: a copy of P per sample otherwise wasted).
+    // The navigation block of the error covariance, for the NEES and the
+    // σ envelopes (only with a truth: a copy of P per sample otherwise
+    // wasted).
     let covariance = job
         .sink
         .evaluation
         .is_some()
-        .then(|| engine.covariance().fixed_view::<3, 3>(6, 6).into_owned());
+        .then(|| engine.covariance().fixed_view::<9, 9>(0, 0).into_owned());
     job.sink
         .sample(engine.solution(), update, covariance.as_ref())
         .map_err(|e| match e {

@@ -5,11 +5,10 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use kestrel::nalgebra::Matrix3;
 use kestrel::nav::experiment::Adaptation;
 use kestrel::nav::NavState;
 
-use super::evaluation::Evaluation;
+use super::evaluation::{Evaluation, NavCovariance, Thinned};
 use super::progress::Ticker;
 use super::schedule::Schedule;
 use crate::gins::nav_line;
@@ -36,6 +35,9 @@ pub(crate) struct Sink<'p> {
     pub rejected: usize,
     pub samples: usize,
     pub end_time: f64,
+    /// (time, latitude, longitude) of the samples, thinned for the track
+    /// figure.
+    pub track: Thinned<(f64, f64, f64)>,
     progress: Ticker<'p>,
 }
 
@@ -106,6 +108,7 @@ impl<'p> Sink<'p> {
             rejected: 0,
             samples: 0,
             end_time: 0.0,
+            track: Thinned::default(),
             progress: s.progress,
         })
     }
@@ -116,7 +119,7 @@ impl<'p> Sink<'p> {
         &mut self,
         nav: &NavState,
         update: Option<Adaptation>,
-        covariance: Option<&Matrix3<f64>>,
+        covariance: Option<&NavCovariance>,
     ) -> Result<(), Error> {
         let t = nav.time;
         let finite = nav.pos.lat.is_finite()
@@ -131,6 +134,7 @@ impl<'p> Sink<'p> {
         }
         self.samples += 1;
         self.end_time = t;
+        self.track.push((t, nav.pos.lat, nav.pos.lon));
         if let Some(a) = update {
             self.updates += 1;
             self.rejected += usize::from(a.rejected);

@@ -41,7 +41,7 @@ use std::fs::File;
 use std::io::{BufReader, BufWriter, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
-use kestrel::nalgebra::{Matrix3, Quaternion, SMatrix, SVector, UnitQuaternion, Vector3};
+use kestrel::nalgebra::{Quaternion, SMatrix, SVector, UnitQuaternion, Vector3};
 use kestrel::nav::engine::{feed_back, ForwardEpoch, SensorCorrections};
 use kestrel::nav::experiment::EpochRecord;
 use kestrel::nav::measurement::ErrorLayout;
@@ -49,10 +49,11 @@ use kestrel::nav::{Ellipsoid, Geodetic, ImuBiases, NavState};
 use kestrel::smoother::{rts_step, Smoothed};
 use kestrel::Euclidean;
 
-use super::evaluation::Evaluation;
+use super::evaluation::{Evaluation, NavCovariance};
 use super::sink::{create_partial, partial_path, settle, Sink, SinkSetup};
 use super::state_files::StateFiles;
 use super::stats::ErrorStats;
+use super::traces::StateRow;
 use super::{progress, Consistency, Silent, WindowDrift};
 use crate::Error;
 
@@ -95,9 +96,20 @@ impl Drop for SmoothSetup {
     }
 }
 
-/// The smoothed solution's errors and position NEES `(time, NEES)` at the
-/// compared epochs, thinned for the plots.
-pub(crate) type SmoothedTraces = (Vec<EpochRecord>, Vec<(f64, f64)>);
+/// What the smoothed run keeps for the figures, thinned.
+#[derive(Debug, Default)]
+pub(crate) struct SmoothedTraces {
+    /// Errors at the compared epochs, with the σ of the navigation errors
+    /// in step.
+    pub errors: Vec<EpochRecord>,
+    pub sigmas: Vec<[f64; 9]>,
+    /// Position NEES `(time, NEES)`.
+    pub nees: Vec<(f64, f64)>,
+    /// (time, latitude, longitude).
+    pub track: Vec<(f64, f64, f64)>,
+    /// Estimates and σ per covariance epoch.
+    pub states: Vec<StateRow>,
+}
 
 /// What the smoothing did.
 #[derive(Clone, Debug, PartialEq)]
@@ -378,7 +390,7 @@ impl ForwardRecord {
             let mut current = corrections.next()?;
             let mut following = corrections.next()?;
             let mut bytes = [0u8; SAMPLE_LEN * 8];
-            let mut pending: Option<(NavState, Matrix3<f64>)> = None;
+            let mut pending: Option<(NavState, NavCovariance)> = None;
             loop {
                 let read = match samples.read_exact(&mut bytes) {
                     Ok(()) => Some(decode_sample(&bytes)),
@@ -438,19 +450,27 @@ impl ForwardRecord {
             Ok(())
         })();
         let finished = sink.finish(outcome.is_ok());
+        let states_rows = std::mem::take(&mut states.rows.records);
         let state_files = states.finish(outcome.is_ok() && finished.is_ok());
         outcome?;
         finished?;
         let mut files = vec![setup.nav_path.clone(), setup.csv_path.clone()];
         files.extend(state_files?);
-        let (mut errors, mut drift, mut traces) = (None, Vec::new(), Default::default());
+        let (mut errors, mut drift) = (None, Vec::new());
+        let mut traces = SmoothedTraces {
+            track: std::mem::take(&mut sink.track.records),
+            states: states_rows,
+            ..SmoothedTraces::default()
+        };
         let mut consistency = None;
         if let Some(e) = sink.evaluation.take() {
             errors = e.all.finish();
             drift = e.drift.clone().finish(sink.end_time);
             files.push(e.csv_path().to_path_buf());
             consistency = Some(e.consistency);
-            traces = (e.errors.records, e.nees.records);
+            traces.errors = e.errors.records;
+            traces.sigmas = e.sigmas.records;
+            traces.nees = e.nees.records;
         }
         let report = SmoothedReport {
             epochs: self.count,
@@ -495,8 +515,9 @@ struct Correction<const N: usize> {
     before: SVector<f64, N>,
     /// Smoothed variances.
     variance: SVector<f64, N>,
-    /// Smoothed position covariance (NED, m²).
-    position: Matrix3<f64>,
+    /// Smoothed navigation-error covariance: variances and the position
+    /// block (NED).
+    position: NavCovariance,
 }
 
 /// The corrections file, read from its end (forward in time).
@@ -537,17 +558,13 @@ impl<const N: usize> Corrections<N> {
         }
         let [after, before, variance] = vectors;
         let [ne, nd, ed] = take::<3>(&self.bytes, &mut at);
-        let position = Matrix3::new(
-            variance[6],
-            ne,
-            nd, //
-            ne,
-            variance[7],
-            ed, //
-            nd,
-            ed,
-            variance[8],
-        );
+        // The navigation block: the variances, and the position
+        // covariances the NEES needs.
+        let mut position = NavCovariance::from_diagonal(&variance.fixed_rows::<9>(0).into_owned());
+        for (i, j, v) in [(7, 6, ne), (8, 6, nd), (8, 7, ed)] {
+            position[(i, j)] = v;
+            position[(j, i)] = v;
+        }
         Ok(Some(Correction {
             time,
             after,

@@ -26,8 +26,10 @@ use std::path::{Path, PathBuf};
 use kestrel::nav::engine::SensorCorrections;
 use kestrel::nav::measurement::ErrorLayout;
 
+use super::evaluation::Thinned;
 use super::schedule::Schedule;
 use super::sink::{create_partial, settle};
+use super::traces::StateRow;
 use super::units::G0;
 use crate::Error;
 
@@ -99,6 +101,11 @@ impl Table {
 
 /// The IMU error estimates and σ files of one solution.
 pub(crate) struct StateFiles {
+    /// The rows written, thinned for the figures.
+    pub rows: Thinned<StateRow>,
+    /// The column names (without the time).
+    pub estimate_names: Vec<String>,
+    pub sigma_names: Vec<String>,
     errors: Table,
     std: Table,
     /// Factors from SI to the σ columns' units.
@@ -140,6 +147,9 @@ impl StateFiles {
         std_columns.extend(states.iter().map(|(n, _)| n.clone()));
         let std = Table::create(out, &format!("{name}_std"), &std_columns)?;
         Ok(Self {
+            rows: Thinned::default(),
+            estimate_names: columns[1..].to_vec(),
+            sigma_names: std_columns[1..].to_vec(),
             errors,
             std,
             scales: states.into_iter().map(|(_, s)| s).collect(),
@@ -165,26 +175,33 @@ impl StateFiles {
     }
 
     /// One row: the corrections in use and the σ of every state (SI).
-    pub(crate) fn row(
-        &mut self,
-        t: f64,
-        c: &SensorCorrections,
-        sigma: impl IntoIterator<Item = f64>,
-    ) -> Result<(), Error> {
+    pub(crate) fn row<I>(&mut self, t: f64, c: &SensorCorrections, sigma: I) -> Result<(), Error>
+    where
+        I: IntoIterator<Item = f64>,
+        I::IntoIter: Clone,
+    {
         let i = &c.imu;
-        let values = [t]
-            .into_iter()
-            .chain(i.gyro.iter().map(|v| v * DEG_PER_H))
+        let estimates = i
+            .gyro
+            .iter()
+            .map(|v| v * DEG_PER_H)
             .chain(i.accel.iter().map(|v| v * MG))
             .chain(i.gyro_scale.iter().map(|v| v * PPM))
             .chain(i.accel_scale.iter().map(|v| v * PPM))
             .chain(self.odometer.then_some(c.odometer_scale * PPM));
-        self.errors.row(values)?;
-        let scales = &self.scales;
-        self.std.row(
-            [t].into_iter()
-                .chain(sigma.into_iter().zip(scales).map(|(s, k)| s * k)),
-        )
+        let sigmas = sigma.into_iter().zip(&self.scales).map(|(s, k)| s * k);
+        // Rows for the figures are built only when the thinning keeps them.
+        if self.rows.wants() {
+            self.rows.push(StateRow {
+                time: t,
+                estimates: estimates.clone().collect(),
+                sigmas: sigmas.clone().collect(),
+            });
+        } else {
+            self.rows.skip();
+        }
+        self.errors.row([t].into_iter().chain(estimates))?;
+        self.std.row([t].into_iter().chain(sigmas))
     }
 
     /// Flushes; puts the files in place when `ok`, else removes them.
