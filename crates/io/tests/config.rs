@@ -121,3 +121,70 @@ impl kestrel::nav::experiment::FilterLoop<6> for Probe {
     }
     fn odometer<P: kestrel::nav::experiment::OdometerProcessing>(self, _: P) {}
 }
+
+/// The datasheet units of the noise densities and the bias models, the
+/// ground-vehicle tables and the 21-state keys, converted to SI; and the
+/// combinations that make no sense refused with the key.
+#[test]
+fn datasheet_units_bias_models_and_constraints() {
+    use kestrel::nav::scenario::ErrorModelKind;
+    use kestrel_io::process::config::parse;
+    use kestrel_io::process::units::{deg_per_h, ug};
+    let base = "[initial]\ntime = 0\nposition = [30, 114, 20]\nattitude = [0, 0, 0]\n\
+                gyro_scale = [100, 0, -50]\n\
+                [initial.std]\nattitude = [1, 1, 1]\nvelocity = [1, 1, 1]\nposition = [1, 1, 1]\n";
+    // 0.01 °/s/√Hz = 0.01 °/√s = 0.6 °/√h; 6 °/h/√h = 0.1 °/h/√s.
+    let text = format!(
+        "{base}gyro_scale = [300, 300, 300]\naccel_scale = [200, 200, 200]\n\
+         [imu]\ngyro_arw_deg_per_s_per_sqrt_hz = 0.01\ngyro_bias_rw = 6.0\naccel_bias_rw = 60.0\n\
+         scale_tau = 3600\n\
+         [filter]\nerror_model = \"ins21\"\n\
+         [nhc]\nrate = 5\nstd = [0.2, 0.3]\nmounting = [1.0, -2.0]\n\
+         [zupt]\naccel_std = 0.05\ngyro_std = 0.2\nrate = 10\nvelocity_std = 0.01\n"
+    );
+    let s = parse(&text, "p.toml".as_ref()).unwrap();
+    assert!((s.imu.gyro_arw - 0.01f64.to_radians()).abs() < 1e-18);
+    assert!((s.imu.gyro_bias_rw - deg_per_h(6.0) / 60.0).abs() < 1e-20);
+    assert!((s.imu.accel_bias_rw - ug(60.0) / 60.0).abs() < 1e-20);
+    assert_eq!(s.error_model, ErrorModelKind::Ins21 { scale_tau: 3600.0 });
+    assert!((s.imu.gyro_scale - 300e-6).abs() < 1e-15);
+    assert!((s.p0.accel_scale.y - 200e-6).abs() < 1e-15);
+    assert!((s.initial_imu.gyro_scale.z + 50e-6).abs() < 1e-18);
+    let n = s.nhc.unwrap();
+    assert_eq!((n.rate, n.std), (5.0, [0.2, 0.3]));
+    assert!((n.mounting[1] + 2f64.to_radians()).abs() < 1e-15);
+    let z = s.zupt.unwrap();
+    assert_eq!((z.window, z.max_speed, z.angular_rate_std), (1.0, 0.5, 0.0));
+    assert!((z.gyro_std - 0.2f64.to_radians()).abs() < 1e-15);
+
+    let refused = [
+        (
+            "[imu]\ngyro_arw = 0.1\ngyro_arw_deg_per_s_per_sqrt_hz = 0.01\n",
+            "imu.gyro_arw_deg_per_s_per_sqrt_hz",
+            "give either gyro_arw or gyro_arw_deg_per_s_per_sqrt_hz",
+        ),
+        (
+            "[imu]\ngyro_markov_sigma = 1\ngyro_markov_tau = 100\ngyro_bias_rw = 1\n",
+            "imu.gyro_bias_rw",
+            "one bias model per sensor: a Gauss-Markov process (`*_markov_sigma`) or a random \
+             walk, not both",
+        ),
+        (
+            "[zupt]\naccel_std = 0.05\ngyro_std = 0.2\nrate = 10\nvelocity_std = 0.01\nmax_speed = 0\n",
+            "zupt.max_speed",
+            "expected a finite value > 0, found 0",
+        ),
+        (
+            "[nhc]\nrate = 10\nstd = [0.1, 0.0]\n",
+            "nhc.std[1]",
+            "expected a standard deviation > 0 whose square in SI units is a normal double \
+             (neither 0 nor infinite), found 0",
+        ),
+    ];
+    for (extra, key, message) in refused {
+        let e = parse(&format!("{base}{extra}"), "p.toml".as_ref())
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, format!("p.toml: key `{key}`: {message}"), "{extra}");
+    }
+}

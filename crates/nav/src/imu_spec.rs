@@ -47,6 +47,11 @@ pub struct ImuSpec {
     pub gyro_scale: f64,
     /// Accelerometer scale-factor error, ratio.
     pub accel_scale: f64,
+    /// Gyro bias random walk (rate random walk) density, rad/s/√s: the
+    /// bias model when there is no Gauss-Markov one.
+    pub gyro_bias_rw: f64,
+    /// Accelerometer bias random walk density, m/s²/√s.
+    pub accel_bias_rw: f64,
 }
 
 impl Default for ImuSpec {
@@ -73,6 +78,8 @@ impl ImuSpec {
             accel_markov_tau: f64::INFINITY,
             gyro_scale: 0.0,
             accel_scale: 0.0,
+            gyro_bias_rw: 0.0,
+            accel_bias_rw: 0.0,
         }
     }
 
@@ -188,6 +195,30 @@ impl ImuSpec {
     /// ```
     pub const fn with_accel_scale_ppm(mut self, ppm: f64) -> Self {
         self.accel_scale = ppm * 1e-6;
+        self
+    }
+
+    /// Gyro bias random walk (rate random walk) in °/h/√h, the datasheet
+    /// unit.
+    ///
+    /// ```
+    /// let s = kestrel_nav::ImuSpec::perfect().with_gyro_bias_rw_deg_per_h_per_sqrt_h(60.0);
+    /// // 60 °/h/√h = 1 °/h/√s.
+    /// assert!((s.gyro_bias_rw - 1f64.to_radians() / 3600.0).abs() < 1e-18);
+    /// ```
+    pub const fn with_gyro_bias_rw_deg_per_h_per_sqrt_h(mut self, x: f64) -> Self {
+        self.gyro_bias_rw = x * (core::f64::consts::PI / 180.0) / 3600.0 / 60.0;
+        self
+    }
+
+    /// Accelerometer bias random walk in µg/√h.
+    ///
+    /// ```
+    /// let s = kestrel_nav::ImuSpec::perfect().with_accel_bias_rw_ug_per_sqrt_h(60.0);
+    /// assert!((s.accel_bias_rw - 1e-6 * 9.80665).abs() < 1e-18);
+    /// ```
+    pub const fn with_accel_bias_rw_ug_per_sqrt_h(mut self, x: f64) -> Self {
+        self.accel_bias_rw = x * 1e-6 * G0 / 60.0;
         self
     }
 

@@ -55,6 +55,7 @@ pub mod mechanisation;
 pub mod odometer;
 pub mod scenario;
 pub mod sim;
+pub mod standstill;
 pub mod state;
 
 pub use attitude::{

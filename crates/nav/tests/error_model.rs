@@ -334,3 +334,23 @@ fn f32_filter_predicts_like_f64() {
         assert!((p32[(i, i)] - d).abs() < 1e-5 * d, "P[{i},{i}]");
     }
 }
+
+/// Random-walk biases: no decay in `F`, the density on the bias states,
+/// and their variance grows linearly over an interval.
+#[test]
+fn random_walk_biases() {
+    let spec = ImuSpec::perfect()
+        .with_gyro_bias_rw_deg_per_h_per_sqrt_h(6.0)
+        .with_accel_bias_rw_ug_per_sqrt_h(30.0);
+    let nav = start(Motion::Stationary);
+    let earth = Ellipsoid::wgs84();
+    let (f, q) = ErrorModel15::continuous(&earth, &spec, &nav, &Vector3::new(0.0, 0.0, -9.8));
+    let (g, a) = (fifteen::GYRO_BIAS, fifteen::ACCEL_BIAS);
+    assert_eq!((f[(g, g)], f[(a, a)]), (0.0, 0.0));
+    assert_eq!(q[g], spec.gyro_bias_rw.powi(2));
+    assert_eq!(q[a + 2], spec.accel_bias_rw.powi(2));
+    // 6 °/h/√h over 100 s: σ = 6 °/h × √(100 / 3600) = 1 °/h.
+    let m = ErrorModel15::new(&earth, &spec, &nav, &Vector3::new(0.0, 0.0, -9.8), 100.0);
+    let sigma = m.qd()[(g, g)].sqrt().to_degrees() * 3600.0;
+    assert!((sigma - 1.0).abs() < 1e-9, "{sigma}");
+}

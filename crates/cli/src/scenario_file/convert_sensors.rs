@@ -137,6 +137,8 @@ pub(super) fn imu_spec(s: &ImuSection) -> Res<ImuSpec> {
         accel_markov_tau: e.accel_markov_tau.x,
         gyro_scale: e.gyro_scale.x,
         accel_scale: e.accel_scale.x,
+        gyro_bias_rw: 0.0,
+        accel_bias_rw: 0.0,
     })
 }
 /// A window from `start_s` and `end_s` or `duration_s`.

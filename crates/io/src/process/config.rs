@@ -74,6 +74,8 @@ struct File {
     #[serde(default)]
     gnss: Gnss,
     odometer: Option<Odometer>,
+    nhc: Option<Nhc>,
+    zupt: Option<Zupt>,
     #[serde(default)]
     output: Output,
     imu_file: Option<ImuFile>,
@@ -205,8 +207,10 @@ struct InitialStd {
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Imu {
-    #[serde(default)]
-    gyro_arw: f64,
+    gyro_arw: Option<f64>,
+    gyro_arw_deg_per_s_per_sqrt_hz: Option<f64>,
+    gyro_bias_rw: Option<f64>,
+    accel_bias_rw: Option<f64>,
     accel_vrw: Option<f64>,
     accel_vrw_ug_per_sqrt_hz: Option<f64>,
     gyro_bias: Option<Refused>,
@@ -267,6 +271,33 @@ struct Odometer {
     scale_sigma: f64,
 }
 
+/// `[nhc]`: the non-holonomic constraint without an odometer.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Nhc {
+    rate: f64,
+    std: Exact<2>,
+    #[serde(default)]
+    mounting: Exact<2>,
+    #[serde(default)]
+    lever_arm: V3,
+}
+
+/// `[zupt]`: zero-velocity (and zero-angular-rate) updates at detected
+/// standstill.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Zupt {
+    window: Option<f64>,
+    accel_std: f64,
+    gyro_std: f64,
+    rate: f64,
+    velocity_std: f64,
+    #[serde(default)]
+    angular_rate_std: f64,
+    max_speed: Option<f64>,
+}
+
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Output {
@@ -296,6 +327,42 @@ pub struct OdometerSettings {
     pub scale_sigma: f64,
 }
 
+/// The non-holonomic constraint (`[nhc]`): a ground vehicle's lateral
+/// and vertical velocity are zero.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NhcSettings {
+    /// Update rate, Hz.
+    pub rate: f64,
+    /// σ of the lateral and vertical velocity, m/s.
+    pub std: [f64; 2],
+    /// The vehicle frame's pitch and yaw against the IMU, rad.
+    pub mounting: [f64; 2],
+    /// The constrained point (rear-axle centre) from the IMU, body
+    /// forward-right-down, m.
+    pub lever_arm: Vector3<f64>,
+}
+
+/// Zero-velocity / zero-angular-rate updates at standstill (`[zupt]`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ZuptSettings {
+    /// Detection window, s.
+    pub window: f64,
+    /// Standstill when the specific force's spread over the window is
+    /// below this, m/s² …
+    pub accel_std: f64,
+    /// … and the angular rate's below this, rad/s.
+    pub gyro_std: f64,
+    /// Update rate while standing, Hz.
+    pub rate: f64,
+    /// σ of the zero velocity, m/s.
+    pub velocity_std: f64,
+    /// σ of the zero angular rate, rad/s (0: no zero-angular-rate update).
+    pub angular_rate_std: f64,
+    /// Standing still needs the INS speed below this too, m/s: a smooth
+    /// drive at constant velocity looks like standstill to the IMU.
+    pub max_speed: f64,
+}
+
 /// A validated configuration in SI units.
 #[derive(Clone, Debug)]
 pub struct Settings {
@@ -310,6 +377,10 @@ pub struct Settings {
     /// Known sensor errors at the start (`initial.gyro_bias`, …): the
     /// engine's first corrections.
     pub initial_imu: ImuBiases,
+    /// The non-holonomic constraint without an odometer, if configured.
+    pub nhc: Option<NhcSettings>,
+    /// Standstill updates, if configured.
+    pub zupt: Option<ZuptSettings>,
     /// The filter's IMU error model.
     pub imu: ImuSpec,
     /// The error-state model.
@@ -647,6 +718,13 @@ impl Check<'_> {
             }
             [imu.gyro_scale, imu.accel_scale] = sigma;
         }
+        if odometer.is_some() && f.nhc.is_some() {
+            return Err(self.err(
+                "nhc",
+                "the odometer update applies the non-holonomic constraint already \
+                 (`odometer.nhc_std`); remove the [nhc] table",
+            ));
+        }
         if odometer.is_some() && !matches!(error_model, ErrorModelKind::Odometer16 { .. }) {
             return Err(self.err(
                 "filter.error_model",
@@ -706,6 +784,8 @@ impl Check<'_> {
             start,
             p0,
             initial_imu,
+            nhc: f.nhc.as_ref().map(|n| self.nhc(n)).transpose()?,
+            zupt: f.zupt.as_ref().map(|z| self.zupt(z)).transpose()?,
             imu,
             error_model,
             kind,
@@ -1146,8 +1226,46 @@ impl Check<'_> {
             (None, None) => 0.0,
         };
         let z = Zero::Absent;
+        let arw = match (m.gyro_arw, m.gyro_arw_deg_per_s_per_sqrt_hz) {
+            (Some(_), Some(_)) => {
+                return Err(self.err(
+                    "imu.gyro_arw_deg_per_s_per_sqrt_hz",
+                    "give either gyro_arw or gyro_arw_deg_per_s_per_sqrt_hz",
+                ))
+            }
+            (Some(x), None) => self.sigma("imu.gyro_arw", x, deg_per_sqrt_h, z)?,
+            // °/s/√Hz = °/√s.
+            (None, Some(x)) => self.sigma("imu.gyro_arw_deg_per_s_per_sqrt_hz", x, deg, z)?,
+            (None, None) => 0.0,
+        };
+        // Bias random walks, per √h in the datasheet: 1/√h = 1/60 per √s.
+        let per_sqrt_h = |key: &str, x: Option<f64>, unit: fn(f64) -> f64, markov: f64| {
+            let Some(x) = x else {
+                return Ok(0.0);
+            };
+            if markov != 0.0 {
+                return Err(self.err(
+                    key,
+                    "one bias model per sensor: a Gauss-Markov process (`*_markov_sigma`) or a \
+                     random walk, not both",
+                ));
+            }
+            self.sigma(key, x, unit, z).map(|v| v / 60.0)
+        };
         Ok(ImuSpec {
-            gyro_arw: self.sigma("imu.gyro_arw", m.gyro_arw, deg_per_sqrt_h, z)?,
+            gyro_arw: arw,
+            gyro_bias_rw: per_sqrt_h(
+                "imu.gyro_bias_rw",
+                m.gyro_bias_rw,
+                deg_per_h,
+                m.gyro_markov_sigma,
+            )?,
+            accel_bias_rw: per_sqrt_h(
+                "imu.accel_bias_rw",
+                m.accel_bias_rw,
+                ug,
+                m.accel_markov_sigma,
+            )?,
             gyro_markov_sigma: self.sigma(
                 "imu.gyro_markov_sigma",
                 m.gyro_markov_sigma,
@@ -1164,6 +1282,50 @@ impl Check<'_> {
             )?,
             accel_markov_tau: self.tau("imu.accel_markov_tau", m.accel_markov_tau)?,
             ..ImuSpec::perfect()
+        })
+    }
+
+    fn nhc(&self, n: &Nhc) -> Result<NhcSettings, InputError> {
+        Ok(NhcSettings {
+            rate: self.positive("nhc.rate", n.rate)?,
+            std: [
+                self.sigma("nhc.std[0]", n.std.0[0], id, Zero::Refused)?,
+                self.sigma("nhc.std[1]", n.std.0[1], id, Zero::Refused)?,
+            ],
+            mounting: [
+                deg(self.within(
+                    "nhc.mounting[0]",
+                    "a pitch",
+                    "deg",
+                    n.mounting.0[0],
+                    (-90.0, 90.0),
+                )?),
+                deg(self.within(
+                    "nhc.mounting[1]",
+                    "a yaw",
+                    "deg",
+                    n.mounting.0[1],
+                    (-180.0, 360.0),
+                )?),
+            ],
+            lever_arm: self.vec("nhc.lever_arm", n.lever_arm, Self::finite, id)?,
+        })
+    }
+
+    fn zupt(&self, z: &Zupt) -> Result<ZuptSettings, InputError> {
+        Ok(ZuptSettings {
+            window: self.positive("zupt.window", z.window.unwrap_or(1.0))?,
+            accel_std: self.positive("zupt.accel_std", z.accel_std)?,
+            gyro_std: deg(self.positive("zupt.gyro_std", z.gyro_std)?),
+            rate: self.positive("zupt.rate", z.rate)?,
+            velocity_std: self.sigma("zupt.velocity_std", z.velocity_std, id, Zero::Refused)?,
+            angular_rate_std: self.sigma(
+                "zupt.angular_rate_std",
+                z.angular_rate_std,
+                deg,
+                Zero::Absent,
+            )?,
+            max_speed: self.positive("zupt.max_speed", z.max_speed.unwrap_or(0.5))?,
         })
     }
 

@@ -14,6 +14,12 @@ pub(crate) enum Step {
     Gnss(usize),
     /// An odometer update (speed and the two non-holonomic constraints).
     Odometer,
+    /// A zero-velocity update at standstill.
+    ZeroVelocity,
+    /// A zero-angular-rate update at standstill.
+    ZeroAngularRate,
+    /// A non-holonomic update without an odometer.
+    NonHolonomic,
 }
 
 const NED: [&str; 3] = ["north", "east", "down"];
@@ -52,6 +58,9 @@ fn measurement_component(step: Step, i: usize) -> String {
         ]
         .get(i)
         .map_or_else(|| format!("row {i}"), |s| (*s).to_owned()),
+        Step::ZeroVelocity if i < 3 => format!("zero velocity {}", NED[i]),
+        Step::ZeroAngularRate if i < 3 => format!("zero angular rate {}", XYZ[i]),
+        Step::NonHolonomic if i < 2 => ["lateral velocity", "vertical velocity"][i].to_owned(),
         _ => format!("row {i}"),
     };
     format!("{name} (row {i})")

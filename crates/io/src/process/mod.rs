@@ -13,6 +13,7 @@
 
 pub mod config;
 mod consistency;
+mod constraints;
 mod dispatch;
 mod divergence;
 mod drift;
@@ -40,6 +41,7 @@ use crate::{Error, InputError};
 
 pub use config::Settings;
 pub use consistency::{Consistency, NEES_BAND_3DOF};
+pub use constraints::ConstraintCounts;
 pub use drift::{gap_threshold, WindowDrift, WindowKind};
 pub use outage::Outage;
 pub use progress::{Progress, Silent};
@@ -188,6 +190,8 @@ pub struct ProcessReport {
     pub updates: usize,
     /// Updates rejected by an adapter.
     pub rejected: usize,
+    /// Standstill and non-holonomic pseudo-measurements (`[zupt]`, `[nhc]`).
+    pub constraints: ConstraintCounts,
     /// Errors against the truth at every truth epoch in the run, if a
     /// truth file was given.
     pub errors: Option<ErrorStats>,
@@ -402,6 +406,7 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
         smoothed: None,
         smoothed_traces: smooth::SmoothedTraces::default(),
         fix_track: evaluation::Thinned::default(),
+        constraints: constraints::Constraints::new(settings.nhc, settings.zupt),
         out: inputs.out.clone(),
         output_interval: settings.output_interval,
         states: None,
@@ -465,6 +470,7 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
         fixes_after_end: job.fixes_after_end,
         updates: job.sink.updates,
         rejected: job.sink.rejected,
+        constraints: job.constraints.counts,
         errors,
         aiding_errors,
         consistency,
@@ -681,6 +687,14 @@ pub fn summary(r: &ProcessReport) -> String {
         r.filter, r.samples, r.end_time, r.fixes_used, r.fixes_in_outage, r.updates, r.rejected
     );
     s += &timing_summary(&r.timing);
+    let c = &r.constraints;
+    if c.zero_velocity + c.non_holonomic + c.standstill_samples > 0 {
+        s += &format!(
+            "constraints: {} zero-velocity and {} zero-angular-rate updates ({} IMU samples \
+             detected standing still), {} non-holonomic updates\n",
+            c.zero_velocity, c.zero_angular_rate, c.standstill_samples, c.non_holonomic
+        );
+    }
     if r.fixes_refused_quality > 0 {
         s += &format!(
             "{} GNSS fixes skipped for their quality flag (gnss_file.quality)\n",

@@ -6,10 +6,12 @@ use std::fs::File;
 use std::io::BufReader;
 
 use kestrel::adapter::PriorAdapter;
-use kestrel::form::{Form, PredictForm};
+use kestrel::form::{Form, PredictForm, UpdateForm};
 use kestrel::nav::engine::{ErrorSystem, LooselyCoupled};
 use kestrel::nav::experiment::Adaptation;
-use kestrel::nav::measurement::{GnssFix, OdometerReading};
+use kestrel::nav::measurement::{
+    ErrorMeasurement, GnssFix, OdometerReading, ZeroAngularRate, ZeroVelocity,
+};
 use kestrel::FilterError;
 
 use super::config::GnssFormat;
@@ -57,6 +59,8 @@ pub(crate) struct Job<'p> {
     pub states: Option<super::state_files::StateFiles>,
     /// The fixes used: (time, latitude, longitude), thinned.
     pub fix_track: super::evaluation::Thinned<(f64, f64, f64)>,
+    /// Standstill and non-holonomic pseudo-measurements.
+    pub constraints: super::constraints::Constraints,
     /// The smoothed solution's errors, thinned (with a truth).
     pub smoothed_traces: super::smooth::SmoothedTraces,
 }
@@ -342,7 +346,7 @@ pub(crate) fn drive<const N: usize, S, F, A>(
 ) -> Result<(), Error>
 where
     S: ErrorSystem<N>,
-    F: Form<f64, N> + PredictForm<f64, N, S::Process>,
+    F: Form<f64, N> + PredictForm<f64, N, S::Process> + Constrainable<N>,
     A: PriorAdapter<f64>,
 {
     let label = job.sink.label;
@@ -417,7 +421,7 @@ fn step<const N: usize, S, F, A>(
 ) -> Result<Option<ImuRecord>, Error>
 where
     S: ErrorSystem<N>,
-    F: Form<f64, N> + PredictForm<f64, N, S::Process>,
+    F: Form<f64, N> + PredictForm<f64, N, S::Process> + Constrainable<N>,
     A: PriorAdapter<f64>,
 {
     let following = job.next_imu()?;
@@ -431,6 +435,9 @@ where
             Step::Imu => "propagating",
             Step::Gnss(_) => "in the GNSS update",
             Step::Odometer => "in the odometer update",
+            Step::ZeroVelocity => "in a zero-velocity update",
+            Step::ZeroAngularRate => "in a zero-angular-rate update",
+            Step::NonHolonomic => "in a non-holonomic update",
         };
         Error::Failed(format!(
             "{label} diverged at {t} s of week {doing} ({input}): {}",
@@ -442,6 +449,48 @@ where
         .imu(&increment)
         .map_err(|e| diverged(e, Step::Imu, format!("IMU line {}", imu_line())))?;
     record_epoch(job, engine)?;
+    // The IMU says "no vibration, no manoeuvre"; the INS speed rules out a
+    // smooth drive at constant velocity, which the IMU cannot tell apart.
+    let standing = match job.constraints.zupt.as_mut() {
+        Some((detector, z, _)) => {
+            detector.push(&increment) && engine.solution().vel.norm() < z.max_speed
+        }
+        None => false,
+    };
+    job.constraints.counts.standstill_samples += usize::from(standing);
+    if let Some((_, z, schedule)) = job.constraints.zupt.as_mut() {
+        if standing && schedule.due(t, z.rate) {
+            let (v_std, w_std) = (z.velocity_std, z.angular_rate_std);
+            let ins = engine.ins_context(t);
+            let m = ZeroVelocity::new(v_std).measurement(engine.system(), &ins);
+            engine
+                .apply_with(&m, &mut ())
+                .map_err(|e| diverged(e, Step::ZeroVelocity, format!("IMU line {}", imu_line())))?;
+            record_epoch(job, engine)?;
+            job.constraints.counts.zero_velocity += 1;
+            if w_std > 0.0 {
+                let ins = engine.ins_context(t);
+                let m = ZeroAngularRate::new(w_std).measurement(engine.system(), &ins);
+                engine.apply_with(&m, &mut ()).map_err(|e| {
+                    diverged(e, Step::ZeroAngularRate, format!("IMU line {}", imu_line()))
+                })?;
+                record_epoch(job, engine)?;
+                job.constraints.counts.zero_angular_rate += 1;
+            }
+        }
+    }
+    if let Some((model, rate, schedule)) = job.constraints.nhc.as_mut() {
+        // At standstill the zero-velocity update says more.
+        if schedule.due(t, *rate) && !standing {
+            let ins = engine.ins_context(t);
+            let m = model.nhc(engine.system(), &ins);
+            engine
+                .apply_with(&m, &mut ())
+                .map_err(|e| diverged(e, Step::NonHolonomic, format!("IMU line {}", imu_line())))?;
+            record_epoch(job, engine)?;
+            job.constraints.counts.non_holonomic += 1;
+        }
+    }
     let mut update = None;
     while let Some((fix, line)) = job.gnss_due(t, following.as_ref().map(|f| f.time))? {
         let rows = if fix.vel.is_some() { 6 } else { 3 };
@@ -499,6 +548,20 @@ where
         }
     }
     Ok(following)
+}
+
+/// The update forms the pseudo-measurements need: 3 rows (zero velocity,
+/// zero angular rate) and 2 (non-holonomic), without an adapter.
+pub(crate) trait Constrainable<const N: usize>:
+    UpdateForm<f64, N, ErrorMeasurement<f64, N, 3>, 3>
+    + UpdateForm<f64, N, ErrorMeasurement<f64, N, 2>, 2>
+{
+}
+
+impl<const N: usize, F> Constrainable<N> for F where
+    F: UpdateForm<f64, N, ErrorMeasurement<f64, N, 3>, 3>
+        + UpdateForm<f64, N, ErrorMeasurement<f64, N, 2>, 2>
+{
 }
 
 /// Streams the covariance epoch the engine closed, if any, to the

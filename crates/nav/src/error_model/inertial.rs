@@ -31,14 +31,15 @@ pub const POS: usize = 6;
 /// ```
 pub trait InertialLayout {
     /// First index of the gyro bias (body, rad/s): a first-order
-    /// Gauss-Markov process when the spec has one, otherwise a random
-    /// constant.
+    /// Gauss-Markov process when the spec has one, otherwise a random walk
+    /// of the spec's `gyro_bias_rw` (a random constant when that is 0).
     const GYRO_BIAS: usize;
     /// First index of a second gyro error that is always a random constant
     /// (body, rad/s; the gyro error is then the sum of both), if any.
     const GYRO_CONST: Option<usize>;
     /// First index of the accelerometer bias (body, m/s²): Gauss-Markov when
-    /// the spec has one, otherwise a random constant.
+    /// the spec has one, otherwise a random walk of `accel_bias_rw` (a
+    /// random constant when 0).
     const ACCEL_BIAS: usize;
 }
 
@@ -138,7 +139,8 @@ where
     /// Dynamics: the navigation block of [`nav_error_dynamics`], every gyro
     /// error into attitude through `−C_b^n`, the accelerometer bias into
     /// velocity through `C_b^n`. A Gauss-Markov bias follows `ḃ = −b/τ + w`
-    /// with density `2σ²/τ`. Noise densities: `ARW²` on φ and `VRW²` on δv
+    /// with density `2σ²/τ`; otherwise a random-walk bias `ḃ = w` has
+    /// density `rw²`. Noise densities: `ARW²` on φ and `VRW²` on δv
     /// (the rotation `C_b^n` drops out because the spec is the same on every
     /// axis).
     ///
@@ -172,15 +174,17 @@ where
         }
         f.fixed_view_mut::<3, 3>(ATT, gyro).copy_from(&(-c));
         f.fixed_view_mut::<3, 3>(VEL, accel).copy_from(&c);
-        let (fg, qg) = markov(
+        let (fg, qg) = bias_process(
             spec.has_gyro_markov(),
             spec.gyro_markov_sigma,
             spec.gyro_markov_tau,
+            spec.gyro_bias_rw,
         );
-        let (fa, qa) = markov(
+        let (fa, qa) = bias_process(
             spec.has_accel_markov(),
             spec.accel_markov_sigma,
             spec.accel_markov_tau,
+            spec.accel_bias_rw,
         );
         let mut q = SVector::<f64, N>::zeros();
         for i in 0..3 {
@@ -195,11 +199,13 @@ where
     }
 }
 
-/// `(−1/τ, 2σ²/τ)` of a Gauss-Markov process, or `(0, 0)` (random constant).
-fn markov(enabled: bool, sigma: f64, tau: f64) -> (f64, f64) {
-    if enabled {
+/// `F` and `q` of a bias state: first-order Gauss-Markov when `markov`
+/// (`−1/τ`, `2σ²/τ`), otherwise a random walk of density `rw` (`0`, `rw²`;
+/// a random constant for `rw = 0`).
+fn bias_process(markov: bool, sigma: f64, tau: f64, rw: f64) -> (f64, f64) {
+    if markov {
         (-1.0 / tau, 2.0 * sigma * sigma / tau)
     } else {
-        (0.0, 0.0)
+        (0.0, rw * rw)
     }
 }

@@ -13,6 +13,8 @@
 //! | [`Odometer::forward`] | 1 | vehicle-frame forward speed, scale factor |
 //! | [`Odometer::nhc`] | 2 | lateral and vertical vehicle velocity ≈ 0 |
 //! | [`Odometer::forward_nhc`] | 3 | both (paper 003's velocity match) |
+//! | [`ZeroVelocity::measurement`] | 3 | NED velocity ≈ 0 at standstill (ZUPT) |
+//! | [`ZeroAngularRate::measurement`] | 3 | body rate ≈ Earth rate at standstill (ZARU) |
 //!
 //! The state layout (where the gyro bias and the odometer scale sit) comes
 //! from an [`ErrorLayout`].
@@ -23,6 +25,7 @@ mod gnss;
 mod layout;
 mod odometer;
 mod reference;
+mod standstill;
 
 pub use context::InsContext;
 pub use difference::ErrorMeasurement;
@@ -31,3 +34,4 @@ pub(crate) use layout::fits as layout_fits;
 pub use layout::ErrorLayout;
 pub use odometer::{Odometer, OdometerReading};
 pub use reference::AttitudeFix;
+pub use standstill::{ZeroAngularRate, ZeroVelocity};
