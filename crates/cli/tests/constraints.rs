@@ -10,44 +10,17 @@
 //! log of the docs it helps less. The settings below were written before
 //! the run; the bounds are two-sided.
 
-use std::path::{Path, PathBuf};
+mod support;
 
-use kestrel_cli::process::{process, ProcessArgs};
-use kestrel_cli::simulate::{simulate, SimulateArgs};
-use kestrel_io::process::{ProcessReport, WindowKind};
+use std::path::Path;
 
-fn tmp_dir(name: &str) -> PathBuf {
-    let p = std::env::temp_dir().join(format!("kestrel-cons-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&p);
-    std::fs::create_dir_all(&p).unwrap();
-    p
-}
+use kestrel_cli::process::process;
+use kestrel_io::process::ProcessReport;
+use support::{forward_drift as max_drift, run_args, simulate_file, tmp_dir, OUTAGES};
 
 fn run(dir: &Path, config: &Path, out: &str) -> Result<ProcessReport, String> {
-    process(&ProcessArgs {
-        imu: dir.join("imu.txt"),
-        gnss: Some(dir.join("gnss.txt")),
-        odo: false,
-        odometer: None,
-        truth: Some(dir.join("truth.nav")),
-        config: config.to_path_buf(),
-        out: dir.join(out),
-        outages: ["300:360", "600:660", "900:960"]
-            .iter()
-            .map(|w| w.parse().unwrap())
-            .collect(),
-        no_plots: true,
-        smooth: false,
-    })
-    .map_err(|e| e.to_string())
-}
-
-fn max_drift(r: &ProcessReport) -> Vec<f64> {
-    r.drift
-        .iter()
-        .filter(|w| w.kind == WindowKind::Outage)
-        .map(|w| w.horizontal.unwrap().1)
-        .collect()
+    let name = config.file_name().unwrap().to_str().unwrap();
+    process(&run_args(dir, name, out, &OUTAGES)).map_err(|e| e.to_string())
 }
 
 const CONSTRAINTS: &str = "
@@ -66,18 +39,8 @@ angular_rate_std = 0.01
 
 #[test]
 fn standstill_and_non_holonomic_updates_cut_the_drift() {
-    let dir = tmp_dir("main");
-    let scenario =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/smoother-drive.toml");
-    simulate(&SimulateArgs {
-        scenario: scenario.to_string_lossy().into_owned(),
-        seed: Some(1001),
-        duration: None,
-        imu_rate: None,
-        out: dir.clone(),
-        force: false,
-    })
-    .unwrap();
+    let dir = tmp_dir("cons", "main");
+    simulate_file("smoother-drive.toml", 1001, None, &dir);
     let plain = dir.join("process.toml");
     let text = std::fs::read_to_string(&plain).unwrap();
     let constrained = dir.join("constrained.toml");

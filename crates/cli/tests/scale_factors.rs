@@ -13,44 +13,17 @@
 //! Nothing was tuned on seed 2001 (the scenario was written before any
 //! run); the bounds are two-sided around its documented values.
 
-use std::path::{Path, PathBuf};
+mod support;
 
-use kestrel_cli::process::{process, ProcessArgs};
-use kestrel_cli::simulate::{simulate, SimulateArgs};
-use kestrel_io::process::{ProcessReport, WindowKind};
+use std::path::Path;
 
-fn tmp_dir(name: &str) -> PathBuf {
-    let p = std::env::temp_dir().join(format!("kestrel-sf-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&p);
-    std::fs::create_dir_all(&p).unwrap();
-    p
-}
+use kestrel_cli::process::process;
+use kestrel_io::process::ProcessReport;
+use support::{forward_drift as max_drift, run_args, simulate_file, tmp_dir, OUTAGES};
 
 fn run(dir: &Path, config: &Path, out: &str) -> ProcessReport {
-    process(&ProcessArgs {
-        imu: dir.join("imu.txt"),
-        gnss: Some(dir.join("gnss.txt")),
-        odo: false,
-        odometer: None,
-        truth: Some(dir.join("truth.nav")),
-        config: config.to_path_buf(),
-        out: dir.join(out),
-        outages: ["300:360", "600:660", "900:960"]
-            .iter()
-            .map(|w| w.parse().unwrap())
-            .collect(),
-        no_plots: true,
-        smooth: false,
-    })
-    .unwrap()
-}
-
-fn max_drift(r: &ProcessReport) -> Vec<f64> {
-    r.drift
-        .iter()
-        .filter(|w| w.kind == WindowKind::Outage)
-        .map(|w| w.horizontal.unwrap().1)
-        .collect()
+    let name = config.file_name().unwrap().to_str().unwrap();
+    process(&run_args(dir, name, out, &OUTAGES)).unwrap()
 }
 
 /// The last row of a CSV file, as numbers.
@@ -66,18 +39,8 @@ fn last_row(path: &Path) -> Vec<f64> {
 
 #[test]
 fn scale_factors_are_estimated_and_reported() {
-    let dir = tmp_dir("main");
-    let scenario =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/scale-factor-drive.toml");
-    simulate(&SimulateArgs {
-        scenario: scenario.to_string_lossy().into_owned(),
-        seed: Some(2001),
-        duration: None,
-        imu_rate: None,
-        out: dir.clone(),
-        force: false,
-    })
-    .unwrap();
+    let dir = tmp_dir("sf", "main");
+    simulate_file("scale-factor-drive.toml", 2001, None, &dir);
     let c21 = dir.join("process.toml");
     let text = std::fs::read_to_string(&c21).unwrap();
     assert!(text.contains("error_model = \"ins21\""));

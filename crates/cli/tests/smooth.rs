@@ -9,58 +9,24 @@
 //! (`docs/processing.md`); this test pins seed 1001 with two-sided bounds
 //! around its documented result, so a change in either direction fails.
 
-use std::path::{Path, PathBuf};
+mod support;
+
+use std::path::Path;
 
 use kestrel_cli::process::{process, ProcessArgs};
-use kestrel_cli::simulate::{simulate, SimulateArgs};
+use support::{max_drift, run_args, simulate_file, tmp_dir, OUTAGES};
 
-fn tmp_dir(name: &str) -> PathBuf {
-    let p = std::env::temp_dir().join(format!("kestrel-smooth-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&p);
-    std::fs::create_dir_all(&p).unwrap();
-    p
-}
-
-fn drive(name: &str) -> PathBuf {
-    let dir = tmp_dir(name);
-    let scenario =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/smoother-drive.toml");
-    simulate(&SimulateArgs {
-        scenario: scenario.to_string_lossy().into_owned(),
-        seed: Some(1001),
-        duration: None,
-        imu_rate: None,
-        out: dir.clone(),
-        force: false,
-    })
-    .unwrap();
+fn drive(name: &str) -> std::path::PathBuf {
+    let dir = tmp_dir("smooth", name);
+    simulate_file("smoother-drive.toml", 1001, None, &dir);
     dir
 }
 
 fn args(dir: &Path) -> ProcessArgs {
     ProcessArgs {
-        imu: dir.join("imu.txt"),
-        gnss: Some(dir.join("gnss.txt")),
-        odo: false,
-        odometer: None,
-        truth: Some(dir.join("truth.nav")),
-        config: dir.join("process.toml"),
-        out: dir.join("r"),
-        outages: ["300:360", "600:660", "900:960"]
-            .iter()
-            .map(|w| w.parse().unwrap())
-            .collect(),
-        no_plots: true,
         smooth: true,
+        ..run_args(dir, "process.toml", "r", &OUTAGES)
     }
-}
-
-fn max_horizontal(drift: &[kestrel_io::process::WindowDrift]) -> Vec<f64> {
-    drift
-        .iter()
-        .filter(|w| w.kind == kestrel_io::process::WindowKind::Outage)
-        .map(|w| w.horizontal.unwrap().1)
-        .collect()
 }
 
 fn within(value: f64, low: f64, high: f64, what: &str) {
@@ -75,8 +41,8 @@ fn smoothing_cuts_the_outage_drift_and_stays_consistent() {
     let dir = drive("main");
     let report = process(&args(&dir)).unwrap();
     let smoothed = report.smoothed.as_ref().expect("smoothed");
-    let forward = max_horizontal(&report.drift);
-    let backward = max_horizontal(&smoothed.drift);
+    let forward = max_drift(&report.drift);
+    let backward = max_drift(&smoothed.drift);
     assert_eq!((forward.len(), backward.len()), (3, 3));
     // Documented: forward 5.49 / 2.48 / 11.15 m, smoothed 0.50 / 0.47 / 0.51 m.
     for (k, (f, s)) in forward.iter().zip(&backward).enumerate() {
@@ -188,7 +154,7 @@ fn a_failed_smoothed_run_leaves_nothing_behind() {
 #[test]
 fn figures_without_a_truth() {
     let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("../io/examples/data");
-    let out = tmp_dir("figures");
+    let out = tmp_dir("smooth", "figures");
     let report = process(&ProcessArgs {
         imu: data.join("imu.txt"),
         gnss: Some(data.join("gnss.txt")),

@@ -153,16 +153,7 @@ pub fn figures_of(
     let traces = errors;
     std::fs::create_dir_all(dir).map_err(|e| CliError::io(dir, e))?;
     let filters: Vec<String> = traces.iter().map(|t| t.label.to_string()).collect();
-    let nis_bound = options.nis_dof.and_then(|dof| {
-        let value = chi2_quantile(dof, options.nis_probability)?;
-        Some(Reference {
-            value,
-            label: format!(
-                "χ² bound, {dof} dof, p = {} ({value:.2})",
-                options.nis_probability
-            ),
-        })
-    });
+    let nis_bound = nis_bound(options);
     let figures = [
         ("position error", panels::position(traces, axes)),
         ("velocity error", panels::velocity(traces)),
@@ -197,16 +188,7 @@ pub fn adaptation_figure(
     options: &FigureOptions,
 ) -> Result<Vec<PathBuf>, CliError> {
     std::fs::create_dir_all(dir).map_err(|e| CliError::io(dir, e))?;
-    let nis_bound = options.nis_dof.and_then(|dof| {
-        let value = chi2_quantile(dof, options.nis_probability)?;
-        Some(Reference {
-            value,
-            label: format!(
-                "χ² bound, {dof} dof, p = {} ({value:.2})",
-                options.nis_probability
-            ),
-        })
-    });
+    let nis_bound = nis_bound(options);
     let figure = Figure {
         title: if title.is_empty() {
             "adapter activity".to_owned()
@@ -217,4 +199,19 @@ pub fn adaptation_figure(
         panels: panels::adaptation(aiding, nis_bound),
     };
     figure.save(dir, "adaptation")
+}
+
+/// The NIS panel's χ² bound line, when the options give its degrees of
+/// freedom.
+fn nis_bound(options: &FigureOptions) -> Option<Reference> {
+    options.nis_dof.and_then(|dof| {
+        let value = chi2_quantile(dof, options.nis_probability)?;
+        Some(Reference {
+            value,
+            label: format!(
+                "χ² bound, {dof} dof, p = {} ({value:.2})",
+                options.nis_probability
+            ),
+        })
+    })
 }

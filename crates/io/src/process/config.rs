@@ -76,6 +76,7 @@ struct File {
     odometer: Option<Odometer>,
     nhc: Option<Nhc>,
     zupt: Option<Zupt>,
+    alignment: Option<Alignment>,
     #[serde(default)]
     output: Output,
     imu_file: Option<ImuFile>,
@@ -171,10 +172,9 @@ struct Initial {
     #[serde(default)]
     week: u32,
     time: f64,
-    position: V3,
-    #[serde(default)]
-    velocity: V3,
-    attitude: V3,
+    position: Option<V3>,
+    velocity: Option<V3>,
+    attitude: Option<V3>,
     /// Known sensor errors at the start (values, not σ): removed from the
     /// readings from the first sample; the filter estimates what is left.
     gyro_bias: Option<V3>,
@@ -271,6 +271,17 @@ struct Odometer {
     scale_sigma: f64,
 }
 
+/// `[alignment]`: the initial attitude from the data.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Alignment {
+    static_time: f64,
+    yaw: String,
+    min_speed: Option<f64>,
+    gyro_bias: Option<bool>,
+    max_accel_std: Option<f64>,
+}
+
 /// `[nhc]`: the non-holonomic constraint without an odometer.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -327,6 +338,36 @@ pub struct OdometerSettings {
     pub scale_sigma: f64,
 }
 
+/// Where the initial yaw comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum YawSource {
+    /// The course of the first GNSS fix faster than `min_speed`: the run
+    /// starts there (position and velocity from the fix).
+    GnssCourse,
+    /// The horizontal Earth rate in the levelled gyro readings of the
+    /// static window (a gyro whose bias is well below the Earth rate); the
+    /// run starts at the end of the window.
+    Gyrocompass,
+}
+
+/// The automatic initial alignment (`[alignment]`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AlignmentSettings {
+    /// Seconds after `initial.time` the vehicle stands still: roll and
+    /// pitch from the mean specific force (levelling).
+    pub static_time: f64,
+    /// The yaw's source.
+    pub yaw: YawSource,
+    /// GNSS horizontal speed for the course, m/s.
+    pub min_speed: f64,
+    /// Whether the static window's mean rate less the Earth rate becomes
+    /// the initial gyro bias (course alignment only).
+    pub gyro_bias: bool,
+    /// The static window is refused when the specific force's spread
+    /// exceeds this, m/s².
+    pub max_accel_std: f64,
+}
+
 /// The non-holonomic constraint (`[nhc]`): a ground vehicle's lateral
 /// and vertical velocity are zero.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -381,6 +422,10 @@ pub struct Settings {
     pub nhc: Option<NhcSettings>,
     /// Standstill updates, if configured.
     pub zupt: Option<ZuptSettings>,
+    /// The automatic alignment, if configured: `start` is then completed
+    /// by [`process`](super::process) (with `yaw = "gnss-course"` its
+    /// position and attitude are placeholders until then).
+    pub alignment: Option<AlignmentSettings>,
     /// The filter's IMU error model.
     pub imu: ImuSpec,
     /// The error-state model.
@@ -578,7 +623,36 @@ impl Check<'_> {
 
     fn settings(&self, f: File) -> Result<Settings, InputError> {
         let i = &f.initial;
-        let [lat, lon, h] = i.position.0;
+        let alignment = f
+            .alignment
+            .as_ref()
+            .map(|a| self.alignment(a))
+            .transpose()?;
+        // What the alignment provides is not given, what it does not is.
+        let course = alignment.is_some_and(|a| a.yaw == YawSource::GnssCourse);
+        let given = [
+            ("initial.position", i.position.is_some(), !course),
+            (
+                "initial.attitude",
+                i.attitude.is_some(),
+                alignment.is_none(),
+            ),
+        ];
+        for (key, present, wanted) in given {
+            if present && !wanted {
+                return Err(self.err(key, "not used: the [alignment] sets it; remove the key"));
+            }
+            if !present && wanted {
+                return Err(self.err(key, "missing (or give an [alignment] table)"));
+            }
+        }
+        if alignment.is_some() && i.velocity.is_some() {
+            return Err(self.err(
+                "initial.velocity",
+                "not used: the alignment starts standing still (or from the GNSS velocity)",
+            ));
+        }
+        let [lat, lon, h] = i.position.map_or([0.0; 3], |p| p.0);
         let key = "initial.position";
         let lat = self.within(
             &format!("{key}[0]"),
@@ -595,7 +669,7 @@ impl Check<'_> {
             physical::LONGITUDE,
         )?;
         let h = self.within(&format!("{key}[2]"), "a height", "m", h, physical::HEIGHT)?;
-        let [roll, pitch, yaw] = i.attitude.0;
+        let [roll, pitch, yaw] = i.attitude.map_or([0.0; 3], |a| a.0);
         let key = "initial.attitude";
         let roll = self.within(&format!("{key}[0]"), "a roll", "deg", roll, (-180.0, 180.0))?;
         let pitch = self.within(&format!("{key}[1]"), "a pitch", "deg", pitch, (-90.0, 90.0))?;
@@ -612,7 +686,12 @@ impl Check<'_> {
         let start = NavState::new(
             self.non_negative("initial.time", i.time)?,
             Geodetic::new(deg(lat), deg(lon), h),
-            self.vec("initial.velocity", i.velocity, speed, id)?,
+            self.vec(
+                "initial.velocity",
+                i.velocity.unwrap_or_default(),
+                speed,
+                id,
+            )?,
             Euler::new(deg(roll), deg(pitch), deg(yaw)),
         );
         let s = &i.std;
@@ -785,6 +864,7 @@ impl Check<'_> {
             p0,
             initial_imu,
             nhc: f.nhc.as_ref().map(|n| self.nhc(n)).transpose()?,
+            alignment,
             zupt: f.zupt.as_ref().map(|z| self.zupt(z)).transpose()?,
             imu,
             error_model,
@@ -1282,6 +1362,38 @@ impl Check<'_> {
             )?,
             accel_markov_tau: self.tau("imu.accel_markov_tau", m.accel_markov_tau)?,
             ..ImuSpec::perfect()
+        })
+    }
+
+    fn alignment(&self, a: &Alignment) -> Result<AlignmentSettings, InputError> {
+        let yaw = match a.yaw.as_str() {
+            "gnss-course" => YawSource::GnssCourse,
+            "gyrocompass" => YawSource::Gyrocompass,
+            other => {
+                return Err(self.err(
+                    "alignment.yaw",
+                    format!("expected `gnss-course` or `gyrocompass`, found `{other}`"),
+                ))
+            }
+        };
+        if yaw == YawSource::Gyrocompass && (a.min_speed.is_some() || a.gyro_bias == Some(true)) {
+            let key = if a.min_speed.is_some() {
+                "alignment.min_speed"
+            } else {
+                "alignment.gyro_bias"
+            };
+            return Err(self.err(
+                key,
+                "not used by `gyrocompass` (the static rate is the Earth rate it measures)",
+            ));
+        }
+        Ok(AlignmentSettings {
+            static_time: self.positive("alignment.static_time", a.static_time)?,
+            yaw,
+            min_speed: self.positive("alignment.min_speed", a.min_speed.unwrap_or(3.0))?,
+            gyro_bias: a.gyro_bias.unwrap_or(yaw == YawSource::GnssCourse),
+            max_accel_std: self
+                .positive("alignment.max_accel_std", a.max_accel_std.unwrap_or(0.1))?,
         })
     }
 

@@ -11,6 +11,7 @@
 //! steps are those of the experiment runner, so simulated data written by
 //! `kestrel simulate` gives the same errors as the in-memory run.
 
+mod alignment;
 pub mod config;
 mod consistency;
 mod constraints;
@@ -39,6 +40,7 @@ use kestrel::nav::scenario::FilterKind;
 use crate::gins::{last_time, ImuReader, OdometerReader};
 use crate::{Error, InputError};
 
+pub use alignment::AlignmentReport;
 pub use config::Settings;
 pub use consistency::{Consistency, NEES_BAND_3DOF};
 pub use constraints::ConstraintCounts;
@@ -192,6 +194,8 @@ pub struct ProcessReport {
     pub rejected: usize,
     /// Standstill and non-holonomic pseudo-measurements (`[zupt]`, `[nhc]`).
     pub constraints: ConstraintCounts,
+    /// The automatic alignment (`[alignment]`), if configured.
+    pub alignment: Option<AlignmentReport>,
     /// Errors against the truth at every truth epoch in the run, if a
     /// truth file was given.
     pub errors: Option<ErrorStats>,
@@ -244,7 +248,16 @@ pub struct ProcessReport {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed, Error> {
-    let settings = config::load(&inputs.config)?;
+    let mut settings = config::load(&inputs.config)?;
+    let alignment = match settings.alignment {
+        Some(a) => Some(alignment::align(
+            &inputs.imu,
+            inputs.gnss.as_deref(),
+            &a,
+            &mut settings,
+        )?),
+        None => None,
+    };
     let odo_flag = match inputs.odometer {
         OdometerInput::None => None,
         OdometerInput::ImuColumn => Some("--odo"),
@@ -310,40 +323,20 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
     remove_output_links(&inputs.out, &names)?;
     let evaluation = match truth {
         None => None,
-        Some(truth) => Some(Evaluation::new(EvaluationSetup {
-            earth: settings.earth,
-            axes: settings.axes,
-            truth,
-            antenna: settings.truth.at_antenna.then_some(settings.lever_arm),
-            csv_path: inputs.out.join("errors.csv"),
-            drift: DriftTable::new(
-                &inputs.outages,
-                inputs
-                    .gnss
-                    .as_deref()
-                    .and_then(|p| gnss_gap_threshold(p, &settings)),
-                settings.start.time,
-            ),
-        })?),
+        Some(truth) => Some(compare_with(inputs, &settings, truth, "errors.csv")?),
     };
     let smoother = if inputs.smooth {
         let evaluation = match inputs.truth.as_deref() {
             None => None,
-            Some(p) => Some(Evaluation::new(EvaluationSetup {
-                earth: settings.earth,
-                axes: settings.axes,
-                truth: Truth::open(p, &settings.truth.format, settings.week)?,
-                antenna: settings.truth.at_antenna.then_some(settings.lever_arm),
-                csv_path: inputs.out.join("errors_smoothed.csv"),
-                drift: DriftTable::new(
-                    &inputs.outages,
-                    inputs
-                        .gnss
-                        .as_deref()
-                        .and_then(|p| gnss_gap_threshold(p, &settings)),
-                    settings.start.time,
-                ),
-            })?),
+            Some(p) => {
+                let truth = Truth::open(p, &settings.truth.format, settings.week)?;
+                Some(compare_with(
+                    inputs,
+                    &settings,
+                    truth,
+                    "errors_smoothed.csv",
+                )?)
+            }
         };
         Some(smooth::ForwardRecord::new(
             &inputs.out,
@@ -471,6 +464,7 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
         updates: job.sink.updates,
         rejected: job.sink.rejected,
         constraints: job.constraints.counts,
+        alignment,
         errors,
         aiding_errors,
         consistency,
@@ -503,6 +497,30 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
         traces,
         track,
         states: state_traces,
+    })
+}
+
+/// The comparison of a solution with `truth`, writing `csv` in `--out`.
+fn compare_with(
+    inputs: &Inputs,
+    settings: &Settings,
+    truth: Truth,
+    csv: &str,
+) -> Result<Evaluation, Error> {
+    Evaluation::new(EvaluationSetup {
+        earth: settings.earth,
+        axes: settings.axes,
+        truth,
+        antenna: settings.truth.at_antenna.then_some(settings.lever_arm),
+        csv_path: inputs.out.join(csv),
+        drift: DriftTable::new(
+            &inputs.outages,
+            inputs
+                .gnss
+                .as_deref()
+                .and_then(|p| gnss_gap_threshold(p, settings)),
+            settings.start.time,
+        ),
     })
 }
 
@@ -687,6 +705,22 @@ pub fn summary(r: &ProcessReport) -> String {
         r.filter, r.samples, r.end_time, r.fixes_used, r.fixes_in_outage, r.updates, r.rejected
     );
     s += &timing_summary(&r.timing);
+    if let Some(a) = &r.alignment {
+        let [roll, pitch, yaw] = a.attitude;
+        s += &format!(
+            "alignment: levelled over {} to {} s ({} IMU samples, specific-force spread {:.3} \
+             m/s²): roll {roll:.3}°, pitch {pitch:.3}°, yaw {yaw:.2}° ",
+            a.window.0, a.window.1, a.samples, a.accel_spread
+        );
+        s += &match (a.yaw, a.course_fix) {
+            (_, Some((t, v))) => format!("from the GNSS course at {t} s ({v:.1} m/s)"),
+            _ => "by gyrocompassing".to_owned(),
+        };
+        if let Some([x, y, z]) = a.gyro_bias {
+            s += &format!("; initial gyro bias {x:.1}, {y:.1}, {z:.1} °/h");
+        }
+        s += &format!("; the run starts at {} s\n", a.start);
+    }
     let c = &r.constraints;
     if c.zero_velocity + c.non_holonomic + c.standstill_samples > 0 {
         s += &format!(

@@ -131,13 +131,7 @@ impl ErrorSystem<15> for Ins15 {
     fn initial_covariance(&self, nav: &InitialUncertainty) -> SMatrix<f64, 15, 15> {
         let mut p = SMatrix::zeros();
         nav.fill(&mut p);
-        let s = &self.spec;
-        let gyro =
-            (s.gyro_bias.powi(2) + markov_var(s.has_gyro_markov(), s.gyro_markov_sigma)).sqrt();
-        let accel =
-            (s.accel_bias.powi(2) + markov_var(s.has_accel_markov(), s.accel_markov_sigma)).sqrt();
-        fill_block(&mut p, fifteen::GYRO_BIAS, gyro);
-        fill_block(&mut p, fifteen::ACCEL_BIAS, accel);
+        fill_biases(&mut p, &self.spec, fifteen::GYRO_BIAS, fifteen::ACCEL_BIAS);
         p
     }
 }
@@ -259,16 +253,20 @@ impl ErrorSystem<21> for Ins21 {
         let mut p = SMatrix::zeros();
         nav.fill(&mut p);
         let s = &self.spec;
-        let gyro =
-            (s.gyro_bias.powi(2) + markov_var(s.has_gyro_markov(), s.gyro_markov_sigma)).sqrt();
-        let accel =
-            (s.accel_bias.powi(2) + markov_var(s.has_accel_markov(), s.accel_markov_sigma)).sqrt();
-        fill_block(&mut p, twentyone::GYRO_BIAS, gyro);
-        fill_block(&mut p, twentyone::ACCEL_BIAS, accel);
+        fill_biases(&mut p, s, twentyone::GYRO_BIAS, twentyone::ACCEL_BIAS);
         fill_block(&mut p, twentyone::GYRO_SCALE, s.gyro_scale);
         fill_block(&mut p, twentyone::ACCEL_SCALE, s.accel_scale);
         p
     }
+}
+
+/// The single gyro and accelerometer bias blocks at `gyro` and `accel`:
+/// the turn-on σ and the Markov σ combined.
+fn fill_biases<const N: usize>(p: &mut SMatrix<f64, N, N>, s: &ImuSpec, gyro: usize, accel: usize) {
+    let g = (s.gyro_bias.powi(2) + markov_var(s.has_gyro_markov(), s.gyro_markov_sigma)).sqrt();
+    let a = (s.accel_bias.powi(2) + markov_var(s.has_accel_markov(), s.accel_markov_sigma)).sqrt();
+    fill_block(p, gyro, g);
+    fill_block(p, accel, a);
 }
 
 /// The steady-state variance of a Markov process, or 0 when absent.
