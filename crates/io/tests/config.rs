@@ -175,6 +175,26 @@ fn datasheet_units_bias_models_and_constraints() {
             "expected a finite value > 0, found 0",
         ),
         (
+            "[zupt]\naccel_std = 0.05\ngyro_std = 0.2\nrate = 1e308\nvelocity_std = 0.01\n",
+            "zupt.rate",
+            "expected an update rate in [0, 10000] Hz, found 1e308",
+        ),
+        (
+            "[zupt]\nwindow = 1e308\naccel_std = 0.05\ngyro_std = 0.2\nrate = 10\nvelocity_std = 0.01\n",
+            "zupt.window",
+            "expected a duration in [0, 3600] s, found 1e308",
+        ),
+        (
+            "[alignment]\nstatic_time = 1e308\nyaw = \"gnss-course\"\n",
+            "alignment.static_time",
+            "expected a duration in [0, 86400] s, found 1e308",
+        ),
+        (
+            "[nhc]\nrate = nan\nstd = [0.1, 0.1]\n",
+            "nhc.rate",
+            "expected a finite value > 0, found NaN",
+        ),
+        (
             "[nhc]\nrate = 10\nstd = [0.1, 0.0]\n",
             "nhc.std[1]",
             "expected a standard deviation > 0 whose square in SI units is a normal double \

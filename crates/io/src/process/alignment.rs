@@ -97,8 +97,9 @@ pub(crate) fn align(
         return Err(InputError::file(
             imu,
             format!(
-                "alignment: {samples} IMU samples between initial.time {start} s and {end} s \
-                 (alignment.static_time = {} s): too few to level",
+                "alignment: the IMU file has {samples} samples covering {seconds} s of the \
+                 static window from initial.time {start} s (alignment.static_time = {} s): \
+                 too little to level",
                 a.static_time
             ),
         )

@@ -271,6 +271,10 @@ struct Odometer {
     scale_sigma: f64,
 }
 
+/// The highest pseudo-measurement rate accepted, Hz (an update per IMU
+/// sample of a 10 kHz IMU).
+const MAX_RATE: f64 = 10_000.0;
+
 /// `[alignment]`: the initial attitude from the data.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -1388,7 +1392,13 @@ impl Check<'_> {
             ));
         }
         Ok(AlignmentSettings {
-            static_time: self.positive("alignment.static_time", a.static_time)?,
+            static_time: self.within(
+                "alignment.static_time",
+                "a duration",
+                "s",
+                self.positive("alignment.static_time", a.static_time)?,
+                (0.0, 86_400.0),
+            )?,
             yaw,
             min_speed: self.positive("alignment.min_speed", a.min_speed.unwrap_or(3.0))?,
             gyro_bias: a.gyro_bias.unwrap_or(yaw == YawSource::GnssCourse),
@@ -1399,7 +1409,13 @@ impl Check<'_> {
 
     fn nhc(&self, n: &Nhc) -> Result<NhcSettings, InputError> {
         Ok(NhcSettings {
-            rate: self.positive("nhc.rate", n.rate)?,
+            rate: self.within(
+                "nhc.rate",
+                "an update rate",
+                "Hz",
+                self.positive("nhc.rate", n.rate)?,
+                (0.0, MAX_RATE),
+            )?,
             std: [
                 self.sigma("nhc.std[0]", n.std.0[0], id, Zero::Refused)?,
                 self.sigma("nhc.std[1]", n.std.0[1], id, Zero::Refused)?,
@@ -1426,10 +1442,22 @@ impl Check<'_> {
 
     fn zupt(&self, z: &Zupt) -> Result<ZuptSettings, InputError> {
         Ok(ZuptSettings {
-            window: self.positive("zupt.window", z.window.unwrap_or(1.0))?,
+            window: self.within(
+                "zupt.window",
+                "a duration",
+                "s",
+                self.positive("zupt.window", z.window.unwrap_or(1.0))?,
+                (0.0, 3_600.0),
+            )?,
             accel_std: self.positive("zupt.accel_std", z.accel_std)?,
             gyro_std: deg(self.positive("zupt.gyro_std", z.gyro_std)?),
-            rate: self.positive("zupt.rate", z.rate)?,
+            rate: self.within(
+                "zupt.rate",
+                "an update rate",
+                "Hz",
+                self.positive("zupt.rate", z.rate)?,
+                (0.0, MAX_RATE),
+            )?,
             velocity_std: self.sigma("zupt.velocity_std", z.velocity_std, id, Zero::Refused)?,
             angular_rate_std: self.sigma(
                 "zupt.angular_rate_std",

@@ -19,7 +19,10 @@ impl Schedule {
         if !(rate.is_finite() && rate > 0.0) || t < self.next as f64 / rate - 1e-9 {
             return false;
         }
-        self.next = ((t * rate + 1e-9).floor() as u64).max(self.next) + 1;
+        // Saturating: an absurd rate (1e308 Hz) must not overflow the count.
+        self.next = ((t * rate + 1e-9).floor() as u64)
+            .max(self.next)
+            .saturating_add(1);
         true
     }
 }
