@@ -82,26 +82,41 @@ pub fn process_figures(dir: &Path, plots: &ProcessPlots<'_>) -> Result<Vec<PathB
             format!("{}: {what}", plots.title)
         }
     };
+    // One panel figure titled `what`, saved as `stem`.
+    let mut save = |what: &str, filters: Vec<String>, panels: Vec<Panel>, stem: &str| {
+        let figure = Figure {
+            title: titled(what),
+            filters,
+            panels,
+        };
+        figure.save(dir, stem).map(|files| written.extend(files))
+    };
     if !plots.solutions.is_empty() {
         let (filters, figures) = error_panels(plots.solutions, plots.axes);
         for ((what, panels), stem) in figures
             .into_iter()
             .zip(["position", "velocity", "attitude"])
         {
-            let figure = Figure {
-                title: titled(what),
-                filters: filters.clone(),
-                panels,
-            };
-            written.extend(figure.save(dir, stem)?);
+            save(what, filters.clone(), panels, stem)?;
         }
         let (filters, panel) = nees_panel(plots.solutions);
-        let figure = Figure {
-            title: titled("position NEES (3 degrees of freedom)"),
+        save(
+            "position NEES (3 degrees of freedom)",
             filters,
-            panels: vec![panel],
-        };
-        written.extend(figure.save(dir, "nees")?);
+            vec![panel],
+            "nees",
+        )?;
+    }
+    if !plots.states.forward.is_empty() {
+        let (filters, panels) = estimate_panels(plots.states);
+        save(
+            "IMU error estimates (body axes)",
+            filters,
+            panels,
+            "imu_errors",
+        )?;
+        let (filters, panels) = sigma_panels(plots.states);
+        save("filter standard deviations", filters, panels, "std")?;
     }
     if !plots.track.forward.is_empty() {
         let figure = TrackFigure {
@@ -109,22 +124,6 @@ pub fn process_figures(dir: &Path, plots: &ProcessPlots<'_>) -> Result<Vec<PathB
             track: plots.track,
         };
         written.extend(figure.save(dir, "track")?);
-    }
-    if !plots.states.forward.is_empty() {
-        let (filters, panels) = estimate_panels(plots.states);
-        let figure = Figure {
-            title: titled("IMU error estimates (body axes)"),
-            filters,
-            panels,
-        };
-        written.extend(figure.save(dir, "imu_errors")?);
-        let (filters, panels) = sigma_panels(plots.states);
-        let figure = Figure {
-            title: titled("filter standard deviations"),
-            filters,
-            panels,
-        };
-        written.extend(figure.save(dir, "std")?);
     }
     Ok(written)
 }

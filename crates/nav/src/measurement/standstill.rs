@@ -40,15 +40,7 @@ impl ZeroVelocity {
         _layout: &L,
         ins: &InsContext,
     ) -> ErrorMeasurement<T, N, 3> {
-        const { assert!(fits::<N, L>(), "error layout does not fit the state") };
-        let mut h = SMatrix::<f64, 3, N>::zeros();
-        h.fixed_view_mut::<3, 3>(0, 3)
-            .copy_from(&nalgebra::Matrix3::identity());
-        ErrorMeasurement::new(
-            ins.state.vel,
-            h,
-            SVector::repeat(self.velocity_std * self.velocity_std),
-        )
+        identity_rows::<T, N, L>(ins.state.vel, &[3], self.velocity_std)
     }
 }
 
@@ -91,18 +83,24 @@ impl ZeroAngularRate {
         _layout: &L,
         ins: &InsContext,
     ) -> ErrorMeasurement<T, N, 3> {
-        const { assert!(fits::<N, L>(), "error layout does not fit the state") };
         let w_ie = ins.earth.earth_rate_ned(ins.state.pos.lat);
         let z: Vector3<f64> = ins.omega_ib - ins.c_bn().transpose() * w_ie;
-        let mut h = SMatrix::<f64, 3, N>::zeros();
-        for &col in L::GYRO_BIAS {
-            h.fixed_view_mut::<3, 3>(0, col)
-                .copy_from(&nalgebra::Matrix3::identity());
-        }
-        ErrorMeasurement::new(
-            z,
-            h,
-            SVector::repeat(self.angular_rate_std * self.angular_rate_std),
-        )
+        identity_rows::<T, N, L>(z, L::GYRO_BIAS, self.angular_rate_std)
     }
+}
+
+/// A 3-row measurement `z` of the sum of the 3-blocks at `blocks`
+/// (`H = [… I … I …]`) with standard deviation `std` on each row.
+fn identity_rows<T: Real, const N: usize, L: ErrorLayout<N>>(
+    z: Vector3<f64>,
+    blocks: &[usize],
+    std: f64,
+) -> ErrorMeasurement<T, N, 3> {
+    const { assert!(fits::<N, L>(), "error layout does not fit the state") };
+    let mut h = SMatrix::<f64, 3, N>::zeros();
+    for &col in blocks {
+        h.fixed_view_mut::<3, 3>(0, col)
+            .copy_from(&nalgebra::Matrix3::identity());
+    }
+    ErrorMeasurement::new(z, h, SVector::repeat(std * std))
 }
