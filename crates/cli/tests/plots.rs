@@ -30,6 +30,7 @@ fn records(n: usize, scale: f64, adapt: impl Fn(f64) -> Adaptation) -> Vec<Epoch
                 velocity: Vector3::new(0.1 * s, 0.2 * s, -0.1 * s),
                 attitude: Vector3::new(1e-4 * s, -1e-4 * s, 3e-4 * s),
                 adaptation: adapt(t),
+                position_nees: None,
             }
         })
         .collect()

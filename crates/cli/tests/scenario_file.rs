@@ -122,6 +122,20 @@ fn other_ellipsoids_round_trip() {
     assert_eq!(parse(&text, Path::new("iau.toml")).unwrap(), s);
 }
 
+/// The tuned scenarios (003's max threshold with windowed R, 004's
+/// accelerometer Markov bias) are written and read back exactly.
+#[test]
+fn tuned_scenarios_round_trip() {
+    for name in ["003", "004"] {
+        let s = kestrel::nav::scenario::tuned(name).unwrap();
+        let text = to_toml(&s);
+        if name == "003" {
+            assert!(text.contains("window = 20"), "{text}");
+        }
+        assert_eq!(parse(&text, Path::new("tuned.toml")).unwrap(), s, "{name}");
+    }
+}
+
 /// A small valid scenario; the bad-input tests change one line of it.
 const BASE: &str = r#"[scenario]
 name = "t"
@@ -269,6 +283,11 @@ fn out_of_range_values_name_key_path_and_allowed_range() {
             "kind = \"standard\"",
             "kind = \"fuzzy-adaptive\"\nwindow = 30",
             "bad.toml:32:10: key `filters[0].window`: must be one of 10, 20, 50, found 30",
+        ),
+        (
+            "kind = \"standard\"",
+            "kind = \"max-threshold\"\nthreshold_m_s = 1.0\nwindow = 30",
+            "bad.toml:33:10: key `filters[0].window`: must be one of 10, 20, 50, found 30",
         ),
         (
             "duration_s = 10.0",

@@ -208,3 +208,34 @@ fn datasheet_units_bias_models_and_constraints() {
         assert_eq!(e, format!("p.toml: key `{key}`: {message}"), "{extra}");
     }
 }
+
+/// The max-threshold baseline takes an optional R window (the fuzzy
+/// filter's lengths only), named in the error when refused.
+#[test]
+fn max_threshold_takes_an_optional_r_window() {
+    use kestrel_io::process::config::parse;
+    let base = "[initial]\ntime = 0\nposition = [30, 114, 20]\nattitude = [0, 0, 0]\n\
+                [initial.std]\nattitude = [1, 1, 1]\nvelocity = [1, 1, 1]\nposition = [1, 1, 1]\n\
+                [odometer]\nrate = 10.0\nspeed_std = 0.1\nnhc_std = 0.1\nscale_tau = 3600.0\nscale_sigma = 0.001\nmounting = [0.0, 0.0]\nlever_arm = [0.0, 0.0, 0.0]\n\
+                [filter]\nerror_model = \"odometer16\"\nkind = \"max-threshold\"\nthreshold = 0.5\n";
+    let kind = |extra: &str| parse(&format!("{base}{extra}"), "p.toml".as_ref()).map(|s| s.kind);
+    assert_eq!(
+        kind("").unwrap(),
+        FilterKind::MaxThreshold {
+            threshold: 0.5,
+            r_window: None
+        }
+    );
+    assert_eq!(
+        kind("window = 20\n").unwrap(),
+        FilterKind::MaxThreshold {
+            threshold: 0.5,
+            r_window: Some(20)
+        }
+    );
+    let e = kind("window = 30\n").unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "p.toml: key `filter.window`: expected 10, 20 or 50, found 30"
+    );
+}

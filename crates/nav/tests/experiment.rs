@@ -172,7 +172,10 @@ fn kinds_that_do_not_fit_are_refused() {
     let s = by_name("000").unwrap();
     let r = run(
         &s,
-        &FilterKind::MaxThreshold { threshold: 1.0 },
+        &FilterKind::MaxThreshold {
+            threshold: 1.0,
+            r_window: None,
+        },
         0,
         &short(1.0),
     );

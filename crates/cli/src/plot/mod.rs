@@ -26,6 +26,7 @@ mod palette;
 mod panels;
 mod process_figures;
 mod range;
+mod sensitivity;
 mod thin;
 mod ticks;
 mod track;
@@ -36,6 +37,7 @@ use kestrel::nav::experiment::{EpochRecord, PositionAxes};
 
 pub use chi2::chi2_quantile;
 pub use process_figures::{process_figures, ProcessPlots, SolutionErrors, PROCESS_FIGURES};
+pub use sensitivity::sensitivity_figure;
 pub use thin::{split_at_gaps, thin};
 
 use crate::CliError;
@@ -96,7 +98,7 @@ impl Default for FigureOptions {
 /// let records: Vec<EpochRecord> = (0..50)
 ///     .map(|i| EpochRecord { time: i as f64, position: Vector3::new(1.0, -1.0, 0.5),
 ///         velocity: Vector3::zeros(), attitude: Vector3::zeros(),
-///         adaptation: Adaptation { nis: 2.0, ..Adaptation::default() } })
+///         adaptation: Adaptation { nis: 2.0, ..Adaptation::default() }, position_nees: None })
 ///     .collect();
 /// let dir = std::env::temp_dir().join("kestrel-doc-figures");
 /// let traces = [FilterTrace { label: "KF", records: &records }];

@@ -30,8 +30,8 @@ pub type RunOutcome = Result<(RunSummary, Vec<WindowError>), RunError>;
 /// The outcome of one filter over all runs.
 #[derive(Clone, Debug)]
 pub struct FilterOutcome {
-    /// The filter's label.
-    pub label: &'static str,
+    /// The filter's label (with its configuration, e.g. `KF (tuned)`).
+    pub label: String,
     /// One entry per run, in run order: its summary and the errors in the
     /// requested windows, or why it failed.
     pub runs: Vec<RunOutcome>,
@@ -80,10 +80,7 @@ pub fn run_monte_carlo(
     if plan.runs == 0 {
         return Err(CliError::Failed("--runs must be at least 1".into()));
     }
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(plan.threads)
-        .build()
-        .map_err(|e| CliError::Failed(format!("cannot start worker threads: {e}")))?;
+    let pool = worker_pool(plan.threads)?;
     let jobs: Vec<(usize, usize)> = (0..scenario.filters.len())
         .flat_map(|f| (0..plan.runs).map(move |r| (f, r)))
         .collect();
@@ -117,7 +114,7 @@ pub fn run_monte_carlo(
         .filters
         .iter()
         .map(|k| FilterOutcome {
-            label: k.label(),
+            label: k.label().to_string(),
             runs: Vec::with_capacity(plan.runs),
             records: Vec::new(),
         })
@@ -129,6 +126,14 @@ pub fn run_monte_carlo(
         }
     }
     Ok(outcomes)
+}
+
+/// A pool of `threads` workers (0: one per core).
+pub(super) fn worker_pool(threads: usize) -> Result<rayon::ThreadPool, CliError> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| CliError::Failed(format!("cannot start worker threads: {e}")))
 }
 
 fn progress_bar(scenario: &Scenario, jobs: usize, visible: bool) -> ProgressBar {

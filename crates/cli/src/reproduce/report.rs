@@ -4,7 +4,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use kestrel::nav::experiment::PositionAxes;
-use kestrel::nav::scenario::Scenario;
+use kestrel::nav::scenario::{Scenario, TUNING_SEEDS};
 
 use super::metric::Metric;
 use super::monte_carlo::{FilterOutcome, MonteCarloPlan};
@@ -45,11 +45,14 @@ pub fn text_report(input: &ReportInput<'_>) -> String {
     let _ = writeln!(out, "== Scenario {}: {}", s.name, s.description);
     let _ = writeln!(
         out,
-        "   {} run(s) per filter, seeds {}–{}; RMS over each run's aiding epochs, mean ± std over runs\n",
+        "   {} run(s) per filter, seeds {}–{}; RMS over each run's aiding epochs, mean ± std (median) over the runs that completed\n",
         plan.runs,
         plan.seed,
         plan.seed.wrapping_add(plan.runs as u64 - 1),
     );
+    if input.paper.is_some() {
+        out.push_str(&tuning_overlap(&s.name, plan));
+    }
     let axes = input.axes();
     let (position, motion) = Metric::ALL.split_at(Metric::POSITION_METRICS);
     let groups = [
@@ -59,10 +62,12 @@ pub fn text_report(input: &ReportInput<'_>) -> String {
     for (title, metrics) in groups {
         let mut header = vec![format!("{title}")];
         header.extend(metrics.iter().map(|m| m.heading(axes)));
+        header.push("failed runs".to_string());
         let mut t = TextTable::new(header);
         for o in input.outcomes {
             let mut row = vec![o.label.to_string()];
             row.extend(metrics.iter().map(|m| format!("{:.3}", input.stats(o, *m))));
+            row.push(format!("{} of {}", o.failures().count(), o.runs.len()));
             t.row(row);
         }
         let _ = writeln!(out, "{t}");
@@ -77,8 +82,35 @@ pub fn text_report(input: &ReportInput<'_>) -> String {
     out
 }
 
+/// Which of the runs' seeds the scenario's parameters were chosen on.
+fn tuning_overlap(name: &str, plan: &MonteCarloPlan) -> String {
+    let runs = plan.seed..plan.seed.saturating_add(plan.runs as u64);
+    let Some((_, tuning)) = TUNING_SEEDS.iter().find(|(n, _)| *n == name) else {
+        return String::new();
+    };
+    let used: Vec<u64> = runs
+        .filter(|s| tuning.iter().any(|r| r.contains(s)))
+        .collect();
+    let ranges: Vec<String> = tuning
+        .iter()
+        .map(|r| format!("{}–{}", r.start(), r.end()))
+        .collect();
+    if used.is_empty() {
+        format!(
+            "   parameters were chosen on seeds {}, none of which is run here\n",
+            ranges.join(", ")
+        )
+    } else {
+        format!(
+            "   parameters were chosen on seeds {}: {} of these runs use them; the sensitivity study below runs held-out seeds\n",
+            ranges.join(", "),
+            used.len()
+        )
+    }
+}
+
 fn paper_comparison(out: &mut String, input: &ReportInput<'_>, table: &PaperTable) {
-    let _ = writeln!(out, "kestrel mean (paper) — {}", table.source);
+    let _ = writeln!(out, "kestrel mean / median (paper) — {}", table.source);
     let mut header = vec!["filter".to_string()];
     header.extend(table.columns.iter().map(|(_, h)| h.to_string()));
     let mut t = TextTable::new(header.clone());
@@ -86,10 +118,10 @@ fn paper_comparison(out: &mut String, input: &ReportInput<'_>, table: &PaperTabl
     for row in table.rows {
         let mut cells = vec![row.label.to_string()];
         for ((metric, _), paper) in table.columns.iter().zip(row.values) {
-            let ours = find(row.label).map(|o| input.stats(o, *metric).mean);
+            let ours = find(row.label).map(|o| input.stats(o, *metric));
             cells.push(match ours {
-                Some(v) => format!("{v:.3} ({paper})"),
-                None => format!("— ({paper})"),
+                Some(v) if v.count > 0 => format!("{:.3} / {:.3} ({paper})", v.mean, v.median),
+                _ => format!("— ({paper})"),
             });
         }
         t.row(cells);
@@ -100,19 +132,29 @@ fn paper_comparison(out: &mut String, input: &ReportInput<'_>, table: &PaperTabl
     };
     let _ = writeln!(
         out,
-        "improvement over {} (its RMS ÷ the filter's): kestrel ×, paper ×",
+        "improvement over {} (its RMS ÷ the filter's): kestrel × of means / of medians (paper ×)",
         base.label
     );
     let mut t = TextTable::new(header);
     for row in &table.rows[1..] {
         let mut cells = vec![row.label.to_string()];
         for (i, (metric, _)) in table.columns.iter().enumerate() {
-            let ours = match (find(base.label), find(row.label)) {
-                (Some(b), Some(f)) => input.stats(b, *metric).mean / input.stats(f, *metric).mean,
-                _ => f64::NAN,
-            };
             let paper = base.values[i] / row.values[i];
-            cells.push(format!("{ours:.2}× ({paper:.2}×)"));
+            cells.push(match (find(base.label), find(row.label)) {
+                (Some(b), Some(f)) => {
+                    let (b, f) = (input.stats(b, *metric), input.stats(f, *metric));
+                    if b.count == 0 || f.count == 0 {
+                        format!("— ({paper:.2}×)")
+                    } else {
+                        format!(
+                            "{:.2}× / {:.2}× ({paper:.2}×)",
+                            b.mean / f.mean,
+                            b.median / f.median
+                        )
+                    }
+                }
+                _ => format!("— ({paper:.2}×)"),
+            });
         }
         t.row(cells);
     }
@@ -169,8 +211,9 @@ fn failures(out: &mut String, outcomes: &[FilterOutcome], plan: &MonteCarloPlan)
 
 /// Writes the summary CSV: one row per filter and metric.
 ///
-/// Columns: `scenario, filter, metric, mean, std, runs_ok, runs_failed,
-/// paper` (`paper` empty where the paper gives no value).
+/// Columns: `scenario, filter, metric, mean, std, median, runs_ok,
+/// runs_failed, paper` (`paper` empty where the paper gives no value;
+/// mean, std and median empty when no run completed).
 ///
 /// # Errors
 /// [`CliError::Io`] if the file cannot be written.
@@ -183,6 +226,7 @@ pub fn write_summary_csv(path: &Path, input: &ReportInput<'_>) -> Result<(), Cli
         "metric",
         "mean",
         "std",
+        "median",
         "runs_ok",
         "runs_failed",
         "paper",
@@ -205,8 +249,9 @@ pub fn write_summary_csv(path: &Path, input: &ReportInput<'_>) -> Result<(), Cli
                 input.scenario.name.clone(),
                 o.label.to_string(),
                 metric.name(axes),
-                stats.mean.to_string(),
-                stats.std.to_string(),
+                known(stats.mean),
+                known(stats.std),
+                known(stats.median),
                 stats.count.to_string(),
                 (o.runs.len() - stats.count).to_string(),
                 paper,
@@ -215,6 +260,15 @@ pub fn write_summary_csv(path: &Path, input: &ReportInput<'_>) -> Result<(), Cli
         }
     }
     w.flush().map_err(|e| CliError::io(path, e))
+}
+
+/// A statistic for a CSV cell: empty when it is not a number (no values).
+fn known(v: f64) -> String {
+    if v.is_nan() {
+        String::new()
+    } else {
+        v.to_string()
+    }
 }
 
 /// Writes the per-run CSV: one row per filter and run.

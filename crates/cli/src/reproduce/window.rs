@@ -35,7 +35,7 @@ pub struct WindowError {
 ///     position: Vector3::new(n, 0.0, 0.0),
 ///     velocity: Vector3::zeros(),
 ///     attitude: Vector3::zeros(),
-///     adaptation: Default::default(),
+///     adaptation: Default::default(), position_nees: None,
 /// };
 /// let mut p = WindowProbe::new(&[Window { start: 10.0, end: 20.0 }]);
 /// for (t, n) in [(9.0, 5.0), (10.0, 7.0), (15.0, -2.0), (21.0, 50.0)] {

@@ -194,14 +194,26 @@ fn takes(k: FilterName) -> &'static [&'static str] {
         ],
         FilterName::FederatedUkf | FilterName::FederatedSrUkf => &["alpha", "beta", "kappa"],
         FilterName::IctErekf => &["significance"],
-        FilterName::MaxThreshold => &["threshold_m_s"],
+        FilterName::MaxThreshold => &["threshold_m_s", "window"],
         FilterName::FuzzyAdaptive => &["window"],
         FilterName::StrongTrackingFading => &["rho", "softening", "lambda_max", "fade_states"],
     }
 }
 
-/// The R windows the fuzzy filter supports.
-const FUZZY_WINDOWS: [i64; 3] = [10, 20, 50];
+/// The R windows the filters support (compile-time lengths).
+const R_WINDOWS: [i64; 3] = [10, 20, 50];
+
+/// The R window `w` of the entry at key path `p`, checked.
+fn r_window(p: &str, w: i64) -> Res<usize> {
+    if R_WINDOWS.contains(&w) {
+        Ok(w as usize)
+    } else {
+        Err(bad(
+            join(p, "window"),
+            format!("must be one of 10, 20, 50, found {w}"),
+        ))
+    }
+}
 
 /// One `[[filters]]` entry at key path `p`.
 pub(super) fn filter(p: &str, e: &FilterEntry) -> Res<FilterKind> {
@@ -299,14 +311,14 @@ pub(super) fn filter(p: &str, e: &FilterEntry) -> Res<FilterKind> {
         },
         FilterName::MaxThreshold => FilterKind::MaxThreshold {
             threshold: get("threshold_m_s", e.threshold_m_s, Range::Positive)?,
+            r_window: e.window.map(|w| r_window(p, w)).transpose()?,
         },
         FilterName::FuzzyAdaptive => {
             let key = join(p, "window");
             let w = need(&key, e.window, &format!("{what} needs it"))?;
-            if !FUZZY_WINDOWS.contains(&w) {
-                return Err(bad(key, format!("must be one of 10, 20, 50, found {w}")));
+            FilterKind::FuzzyAdaptive {
+                window: r_window(p, w)?,
             }
-            FilterKind::FuzzyAdaptive { window: w as usize }
         }
         FilterName::StrongTrackingFading => FilterKind::StrongTrackingFading {
             rho: get("rho", e.rho, Range::Interval(0.0, 1.0, true, false))?,

@@ -52,7 +52,8 @@ pub fn epoch_columns(axes: PositionAxes) -> [&'static str; 18] {
 /// use kestrel::nav::nalgebra::Vector3;
 /// let mut w = EpochCsvWriter::new(Vec::new(), PositionAxes::NorthEastDown).unwrap();
 /// let r = EpochRecord { time: 0.1, position: Vector3::zeros(), velocity: Vector3::zeros(),
-///     attitude: Vector3::zeros(), adaptation: Adaptation { rejected: true, ..Adaptation::default() } };
+///     attitude: Vector3::zeros(), adaptation: Adaptation { rejected: true, ..Adaptation::default() },
+///     position_nees: None };
 /// w.write(&r).unwrap();
 /// let text = String::from_utf8(w.finish_into_inner().unwrap()).unwrap();
 /// assert_eq!(text.lines().nth(1), Some("0.1,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,1,1.0,1.0,0,1.0,1.0,0.0"));
@@ -150,7 +151,7 @@ impl<W: io::Write> EpochCsvWriter<W> {
     /// use kestrel::nav::nalgebra::Vector3;
     /// let mut w = EpochCsvWriter::with_update_column(Vec::new(), PositionAxes::NorthEastDown).unwrap();
     /// let r = EpochRecord { time: 0.5, position: Vector3::new(1.0, 0.0, 0.0),
-    ///     velocity: Vector3::zeros(), attitude: Vector3::zeros(), adaptation: Default::default() };
+    ///     velocity: Vector3::zeros(), attitude: Vector3::zeros(), adaptation: Default::default(), position_nees: None };
     /// w.write_compared(&r, false, false).unwrap();
     /// let text = String::from_utf8(w.finish_into_inner().unwrap()).unwrap();
     /// assert!(text.starts_with("time_s,pos_north_m,pos_east_m,pos_down_m,vel_north_mps,"));

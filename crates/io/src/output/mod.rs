@@ -25,7 +25,7 @@ use crate::Error;
 /// use kestrel::nav::experiment::{Adaptation, EpochRecord, PositionAxes};
 /// use kestrel::nav::nalgebra::Vector3;
 /// let r = EpochRecord { time: 1.0, position: Vector3::new(1.0, 2.0, 3.0),
-///     velocity: Vector3::zeros(), attitude: Vector3::zeros(), adaptation: Adaptation::default() };
+///     velocity: Vector3::zeros(), attitude: Vector3::zeros(), adaptation: Adaptation::default(), position_nees: None };
 /// let path = std::env::temp_dir().join("kestrel-doc-epochs.csv");
 /// write_epochs_csv(&path, PositionAxes::EastNorthUp, &[r]).unwrap();
 /// let text = std::fs::read_to_string(&path).unwrap();

@@ -536,6 +536,18 @@ impl Check<'_> {
         }
     }
 
+    /// An R window length: 10, 20 or 50 innovations (compile-time lengths).
+    fn r_window(&self, window: usize) -> Result<usize, InputError> {
+        if [10, 20, 50].contains(&window) {
+            Ok(window)
+        } else {
+            Err(self.err(
+                "filter.window",
+                format!("expected 10, 20 or 50, found {window}"),
+            ))
+        }
+    }
+
     fn positive(&self, key: &str, x: f64) -> Result<f64, InputError> {
         if x.is_finite() && x > 0.0 {
             Ok(x)
@@ -1511,7 +1523,7 @@ impl Check<'_> {
                 "fade_states",
             ],
             "fading" => &["rho", "softening", "lambda_max", "fade_states"],
-            "max-threshold" => &["threshold"],
+            "max-threshold" => &["threshold", "window"],
             "fuzzy-adaptive" => &["window"],
             other => {
                 return Err(self.err(
@@ -1596,17 +1608,11 @@ impl Check<'_> {
             },
             "max-threshold" => FilterKind::MaxThreshold {
                 threshold: self.positive("filter.threshold", f.threshold.unwrap_or(1.0))?,
+                r_window: f.window.map(|w| self.r_window(w)).transpose()?,
             },
-            "fuzzy-adaptive" => {
-                let window = f.window.unwrap_or(20);
-                if ![10, 20, 50].contains(&window) {
-                    return Err(self.err(
-                        "filter.window",
-                        format!("expected 10, 20 or 50, found {window}"),
-                    ));
-                }
-                FilterKind::FuzzyAdaptive { window }
-            }
+            "fuzzy-adaptive" => FilterKind::FuzzyAdaptive {
+                window: self.r_window(f.window.unwrap_or(20))?,
+            },
             _ => FilterKind::Standard,
         };
         self.validate(&kind, odometer)?;

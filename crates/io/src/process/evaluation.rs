@@ -316,6 +316,7 @@ impl Evaluation {
             velocity: e.dv,
             attitude: e.phi,
             adaptation: update.unwrap_or_default(),
+            position_nees: None,
         };
         self.all.add(&r, reference.full);
         self.drift.add(r.time, &r.position);
@@ -428,6 +429,7 @@ mod tests {
             velocity: Vector3::zeros(),
             attitude: Vector3::zeros(),
             adaptation: Adaptation::default(),
+            position_nees: None,
         };
         for k in 0..100_000 {
             t.push(r(k));

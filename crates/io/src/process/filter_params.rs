@@ -9,7 +9,8 @@ use kestrel::nav::scenario::{FadeBlock, FilterKind};
 pub enum Param {
     /// A number under its key.
     Number(&'static str, f64),
-    /// The fuzzy R window length (`window`).
+    /// The R window length (`window`) of the fuzzy filter and of the
+    /// max-threshold baseline with windowed R.
     Window(usize),
     /// The states the fade scales (`fade_states`).
     Fade(FadeBlock),
@@ -57,7 +58,14 @@ pub fn filter_params(kind: &FilterKind) -> Vec<Param> {
             Number("kappa", kappa),
         ],
         FilterKind::IctErekf { significance } => vec![Number("significance", significance)],
-        FilterKind::MaxThreshold { threshold } => vec![Number("threshold", threshold)],
+        FilterKind::MaxThreshold {
+            threshold,
+            r_window,
+        } => {
+            let mut p = vec![Number("threshold", threshold)];
+            p.extend(r_window.map(Param::Window));
+            p
+        }
         FilterKind::FuzzyAdaptive { window } => vec![Param::Window(window)],
         FilterKind::StrongTrackingFading {
             rho,

@@ -2,6 +2,7 @@
 //! runner applies to simulated samples and a file-driven loop applies to
 //! recorded fixes and readings, so both compute the same update.
 
+use kestrel_adaptive::WindowedNoise;
 use kestrel_core::adapter::{NoiseAdapter, PriorAdapter};
 use kestrel_core::form::{Form, PredictForm, UpdateForm};
 use kestrel_core::FilterError;
@@ -257,6 +258,14 @@ impl OdometerProcessing for () {
 }
 
 impl OdometerProcessing for MaxThreshold<f64> {
+    type Adapter = Self;
+    fn adapter(&mut self, _: &InsContext, _: &OdometerReading, _: f64) -> &mut Self {
+        self
+    }
+}
+
+// The max-threshold baseline with windowed R: both are plain adapters.
+impl<const W: usize> OdometerProcessing for (MaxThreshold<f64>, WindowedNoise<f64, 3, W>) {
     type Adapter = Self;
     fn adapter(&mut self, _: &InsContext, _: &OdometerReading, _: f64) -> &mut Self {
         self

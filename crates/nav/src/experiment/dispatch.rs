@@ -3,7 +3,9 @@
 //! engine filters, shared with loops over other data sources; the
 //! federated filters run their own loop).
 
-use kestrel_adaptive::{HuberInflation, ImprovedAdaptive, SageHusaFading, StrongTracking};
+use kestrel_adaptive::{
+    HuberInflation, ImprovedAdaptive, SageHusaFading, StrongTracking, WindowedNoise,
+};
 use kestrel_core::adapter::{NoiseAdapter, PriorAdapter};
 use kestrel_core::form::{FadeStates, SquareRootForm, UnscentedForm};
 use kestrel_core::sigma::MerweParams;
@@ -125,7 +127,21 @@ pub fn build_filter<const M: usize, L: FilterLoop<M>>(
                 .map_err(Invalid)?,
             fade_states,
         ),
-        FilterKind::MaxThreshold { threshold } => run.odometer(MaxThreshold::<f64>::new(threshold)),
+        FilterKind::MaxThreshold {
+            threshold,
+            r_window,
+        } => {
+            let gate = MaxThreshold::<f64>::new(threshold);
+            // The isolation test first, so an isolated reading never
+            // enters the R window (as the fuzzy filter's veto).
+            match r_window {
+                None => run.odometer(gate),
+                Some(10) => run.odometer((gate, windowed_r::<10>().map_err(Invalid)?)),
+                Some(20) => run.odometer((gate, windowed_r::<20>().map_err(Invalid)?)),
+                Some(50) => run.odometer((gate, windowed_r::<50>().map_err(Invalid)?)),
+                Some(_) => return Err(Unsupported("R windows of 10, 20 or 50 innovations only")),
+            }
+        }
         // The window is a compile-time length (no allocation in the update).
         FilterKind::FuzzyAdaptive { window } => match window {
             10 => run.odometer(FuzzyOdometer::<f64, 10>::paper003().map_err(Invalid)?),
@@ -141,6 +157,12 @@ pub fn build_filter<const M: usize, L: FilterLoop<M>>(
             return Err(Unsupported("the federated filters run their own loop"))
         }
     })
+}
+
+/// The windowed R estimate of the max-threshold baseline: the fuzzy
+/// filter's (same variance floor, 10⁻⁴ (m/s)²).
+fn windowed_r<const W: usize>() -> Result<WindowedNoise<f64, 3, W>, FilterError> {
+    WindowedNoise::new(1e-4)
 }
 
 /// The closed-loop error-state EKF of `N` states: zero error state, P0 the

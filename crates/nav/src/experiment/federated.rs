@@ -195,6 +195,7 @@ where
             noise_trace: to_f64(r0.noise.trace() + r1.noise.trace()),
             ..Adaptation::default()
         };
-        Ok(Some((*ins.state(), adaptation)))
+        // The fused covariance is not a single filter's: no NEES.
+        Ok(Some((*ins.state(), adaptation, None)))
     }))
 }

@@ -89,7 +89,8 @@ impl Adaptation {
 /// use kestrel_nav::experiment::{Adaptation, EpochRecord};
 /// use kestrel_nav::nalgebra::Vector3;
 /// let r = EpochRecord { time: 1.0, position: Vector3::new(3.0, 4.0, 0.0),
-///     velocity: Vector3::zeros(), attitude: Vector3::zeros(), adaptation: Adaptation::default() };
+///     velocity: Vector3::zeros(), attitude: Vector3::zeros(), adaptation: Adaptation::default(),
+///     position_nees: None };
 /// assert_eq!(r.horizontal_error(), 5.0);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -104,6 +105,12 @@ pub struct EpochRecord {
     pub attitude: Vector3<f64>,
     /// What the update did.
     pub adaptation: Adaptation,
+    /// The normalised estimation error squared of the position,
+    /// `δrᵀ P_rr⁻¹ δr` against the filter's posterior position covariance
+    /// (χ²(3) for a consistent filter); `None` where the runner has no
+    /// single covariance (the federated filters) or it is not positive
+    /// definite.
+    pub position_nees: Option<f64>,
 }
 
 impl EpochRecord {
@@ -127,7 +134,33 @@ impl EpochRecord {
             velocity: e.dv,
             attitude: e.phi,
             adaptation,
+            position_nees: None,
         })
+    }
+
+    /// The record with its [`position_nees`](Self::position_nees) against
+    /// the position covariance `p` (NED, m²); unchanged without one, `None`
+    /// if `p` is not positive definite.
+    ///
+    /// ```
+    /// use kestrel_nav::experiment::{Adaptation, EpochRecord};
+    /// use kestrel_nav::nalgebra::{Matrix3, Vector3};
+    /// let r = EpochRecord { time: 1.0, position: Vector3::new(2.0, 0.0, 3.0),
+    ///     velocity: Vector3::zeros(), attitude: Vector3::zeros(),
+    ///     adaptation: Adaptation::default(), position_nees: None };
+    /// let p = Matrix3::from_diagonal(&Vector3::new(4.0, 1.0, 9.0));
+    /// // 2²/4 + 3²/9 = 2.
+    /// assert_eq!(r.with_position_covariance(Some(&p)).position_nees, Some(2.0));
+    /// assert_eq!(r.with_position_covariance(Some(&-p)).position_nees, None);
+    /// ```
+    pub fn with_position_covariance(mut self, p: Option<&nalgebra::Matrix3<f64>>) -> Self {
+        if let Some(p) = p {
+            self.position_nees = p
+                .cholesky()
+                .map(|c| self.position.dot(&c.solve(&self.position)))
+                .filter(|v| v.is_finite());
+        }
+        self
     }
 
     /// The horizontal position error, m.
@@ -136,7 +169,8 @@ impl EpochRecord {
     /// # use kestrel_nav::experiment::{Adaptation, EpochRecord};
     /// # use kestrel_nav::nalgebra::Vector3;
     /// let r = EpochRecord { time: 0.0, position: Vector3::new(0.0, 0.0, 7.0),
-    ///     velocity: Vector3::zeros(), attitude: Vector3::zeros(), adaptation: Adaptation::default() };
+    ///     velocity: Vector3::zeros(), attitude: Vector3::zeros(), adaptation: Adaptation::default(),
+    ///     position_nees: None };
     /// assert_eq!(r.horizontal_error(), 0.0);
     /// ```
     pub fn horizontal_error(&self) -> f64 {

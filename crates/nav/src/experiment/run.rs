@@ -105,6 +105,11 @@ pub fn run_with<C: FnMut(&EpochRecord)>(
     )
 }
 
+/// What a runner's step returns at an aiding epoch: the navigation
+/// solution, what the update did and the filter's position-error
+/// covariance (NED, m², `None` if the runner has no single one).
+pub(crate) type Solved = (NavState, Adaptation, Option<nalgebra::Matrix3<f64>>);
+
 /// Everything a run needs besides the filter.
 pub(crate) struct Job<'a, C> {
     pub label: &'static str,
@@ -154,7 +159,11 @@ impl<C: FnMut(&EpochRecord)> Job<'_, C> {
             };
             engine.imu(&sample.imu).map_err(fail)?;
             let adaptation = aiding.update(&mut engine, sample).map_err(fail)?;
-            Ok(adaptation.map(|a| (*engine.solution(), a)))
+            Ok(adaptation.map(|a| {
+                // δr is states 6–8 of every error model here.
+                let p = engine.covariance().fixed_view::<3, 3>(6, 6).into_owned();
+                (*engine.solution(), a, Some(p))
+            }))
         });
         outcome.map(|()| summary)
     }
@@ -175,7 +184,7 @@ impl<C: FnMut(&EpochRecord)> Job<'_, C> {
     /// samples up to it.
     pub(crate) fn drive<P>(self, mut step: P) -> (RunSummary, Result<(), RunError>)
     where
-        P: FnMut(&SensorSample) -> Result<Option<(NavState, Adaptation)>, RunError>,
+        P: FnMut(&SensorSample) -> Result<Option<Solved>, RunError>,
     {
         let sc = self.scenario;
         let mut acc = self.accumulator();
@@ -187,8 +196,9 @@ impl<C: FnMut(&EpochRecord)> Job<'_, C> {
             end = sample.truth.time;
             let epoch = step(&sample).and_then(|solved| {
                 solved
-                    .map(|(nav, adaptation)| {
+                    .map(|(nav, adaptation, position_covariance)| {
                         EpochRecord::measure(&sc.earth, &nav, &sample.truth, adaptation, label)
+                            .map(|r| r.with_position_covariance(position_covariance.as_ref()))
                     })
                     .transpose()
             });

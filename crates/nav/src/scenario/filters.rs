@@ -66,10 +66,16 @@ pub enum FilterKind {
         significance: f64,
     },
     /// Paper 003's baseline: the odometer is isolated while
-    /// `|v_SINS − v_OD|` exceeds `threshold` (m/s).
+    /// `|v_SINS − v_OD|` exceeds `threshold` (m/s); optionally with the
+    /// same windowed re-estimation of R as the fuzzy filter (not in the
+    /// paper: the baseline given the fuzzy filter's adaptive R, so the
+    /// comparison isolates the fuzzy gain).
     MaxThreshold {
         /// Speed difference threshold, m/s.
         threshold: f64,
+        /// Innovations in the R window (10, 20 or 50), or `None` for the
+        /// fixed R of the paper's baseline.
+        r_window: Option<usize>,
     },
     /// Paper 003: fuzzy adaptive odometer gain with windowed re-estimation
     /// of R.
@@ -167,7 +173,8 @@ impl FilterKind {
             Self::FederatedUkf { .. } => "federated UKF",
             Self::FederatedSrUkf { .. } => "federated SR-UKF",
             Self::IctErekf { .. } => "ICT-EREKF",
-            Self::MaxThreshold { .. } => "max threshold",
+            Self::MaxThreshold { r_window: None, .. } => "max threshold",
+            Self::MaxThreshold { .. } => "max threshold + windowed R",
             Self::FuzzyAdaptive { .. } => "fuzzy adaptive",
             Self::StrongTrackingFading { .. } => "fading KF",
         }

@@ -15,6 +15,7 @@ mod s002;
 mod s003;
 mod s004;
 mod setup;
+mod study;
 mod units;
 
 use nalgebra::Vector3;
@@ -28,6 +29,10 @@ pub use s004::scenario_004;
 pub use setup::{
     ErrorModelKind, FilterSetup, InitialErrors, InitialUncertainty, MeasurementKind,
     MeasurementNoise,
+};
+pub use study::{
+    fault_free, tuned, variants, Variant, STUDY_SEEDS_FROM, TEST_SEEDS_FROM, TUNED_003_THRESHOLD,
+    TUNING_SEEDS,
 };
 
 use crate::attitude::correct_attitude;

@@ -83,6 +83,12 @@ use crate::sim::{
 ///   seeds 0–3), so the clamp λ ≤ 1.5 stays. Chosen on seeds 0–7, not
 ///   per seed.
 ///
+/// **Tuning seeds:** 0–7 (the patch, the GNSS rate, γ, the clamp and the
+/// fade block; [`TUNING_SEEDS`](super::TUNING_SEEDS)). The size of the
+/// result is set by the patch: on held-out seeds the improved filter's
+/// horizontal RMS is 13× below the KF's with this patch at 10 Hz, 4.4×
+/// with it at 1 Hz and 1.9–2.4× without its bias ([`variants`](super::variants)).
+///
 /// ```
 /// let s = kestrel_nav::scenario::scenario_000();
 /// assert_eq!(s.earth.a, 6_378_245.0);

@@ -78,7 +78,15 @@ use crate::sim::{
 /// - No GPS noise change: a noise increase the receiver does not report
 ///   is the case fading handles worst (it raises the gain on the noisy
 ///   fixes); a 3× surge during 1400–1550 s made the fading KF's horizontal
-///   RMS about 8 m against the conventional KF's 2.4 m.
+///   RMS about 8 m against the conventional KF's 2.4 m. Removed after
+///   seeing that result; the surge is one of the [`variants`](super::variants).
+///
+/// **Tuning seeds:** 0–3 (β, the clamp, the fade block, the scale
+/// factors) and 4–11 (the realistic bias model of [`tuned`](super::tuned));
+/// [`TUNING_SEEDS`](super::TUNING_SEEDS). The KF here keeps the paper's
+/// accelerometer-bias model (P0 10–15 µg, no process noise), which is
+/// over-confident against this IMU; with a consistent model in both
+/// filters the KF has the better position ([`tuned`](super::tuned)).
 ///
 /// ```
 /// let s = kestrel_nav::scenario::scenario_004();

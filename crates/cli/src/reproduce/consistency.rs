@@ -1,0 +1,162 @@
+//! The consistency check of a reproduction's filters: position NEES on the
+//! fault-free form of the scenario, where a well-modelled filter's NEES is
+//! χ²(3).
+
+use std::fmt::Write as _;
+
+use kestrel::nav::experiment::{run_with, RunOptions};
+use kestrel::nav::scenario::{fault_free, Scenario};
+use rayon::prelude::*;
+
+use super::monte_carlo::worker_pool;
+use super::table::TextTable;
+use crate::plot::chi2_quantile;
+use crate::CliError;
+
+/// The share of a run skipped before NEES is counted (the initial
+/// convergence).
+pub const SETTLING_SHARE: f64 = 0.1;
+
+/// Mean NEES above this: the filter is over-confident (its covariance
+/// does not cover its errors); below [`CONSERVATIVE_BELOW`]: conservative.
+pub const OVERCONFIDENT_ABOVE: f64 = 6.0;
+
+/// See [`OVERCONFIDENT_ABOVE`].
+pub const CONSERVATIVE_BELOW: f64 = 1.0;
+
+/// One filter's NEES over the fault-free runs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NeesRow {
+    /// The filter's label (with its configuration).
+    pub label: String,
+    /// Mean position NEES over the counted epochs of every completed run.
+    pub mean: Option<f64>,
+    /// Share of those epochs inside the two-sided 95 % χ²(3) band.
+    pub inside: Option<f64>,
+    /// Epochs counted.
+    pub epochs: usize,
+    /// Runs that failed.
+    pub failed: usize,
+}
+
+/// Runs every filter of each `(label suffix, scenario)` configuration on
+/// the scenario's [`fault_free`] form for `seeds` and measures the
+/// position NEES after the first [`SETTLING_SHARE`] of the run.
+///
+/// # Errors
+/// [`CliError::Failed`] if the worker threads cannot start.
+pub fn nees_rows(
+    configs: &[(&str, &Scenario)],
+    seeds: core::ops::Range<u64>,
+    threads: usize,
+    duration: Option<f64>,
+) -> Result<Vec<NeesRow>, CliError> {
+    let (lo, hi) = band();
+    let pool = worker_pool(threads)?;
+    let mut jobs = Vec::new();
+    for (suffix, s) in configs {
+        let clean = fault_free(s);
+        for k in &s.filters {
+            jobs.push((format!("{}{suffix}", k.label()), clean.clone(), *k));
+        }
+    }
+    let options = RunOptions {
+        duration,
+        ..RunOptions::default()
+    }
+    .without_records();
+    pool.install(|| {
+        Ok(jobs
+            .par_iter()
+            .map(|(label, s, k)| {
+                let start = duration
+                    .or_else(|| s.trajectory().ok().map(|t| t.duration()))
+                    .unwrap_or(0.0)
+                    * SETTLING_SHARE;
+                let (mut sum, mut inside, mut epochs, mut failed) = (0.0, 0usize, 0usize, 0usize);
+                for seed in seeds.clone() {
+                    let (mut rs, mut ri, mut re) = (0.0, 0usize, 0usize);
+                    let run = run_with(s, k, seed, &options, |r| {
+                        if let (true, Some(v)) = (r.time >= start, r.position_nees) {
+                            rs += v;
+                            re += 1;
+                            ri += usize::from(v >= lo && v <= hi);
+                        }
+                    });
+                    if run.is_ok() {
+                        (sum, inside, epochs) = (sum + rs, inside + ri, epochs + re);
+                    } else {
+                        failed += 1;
+                    }
+                }
+                let share = |x: f64| (epochs > 0).then(|| x / epochs as f64);
+                NeesRow {
+                    label: label.clone(),
+                    mean: share(sum),
+                    inside: share(inside as f64),
+                    epochs,
+                    failed,
+                }
+            })
+            .collect())
+    })
+}
+
+/// The two-sided 95 % band of χ²(3).
+fn band() -> (f64, f64) {
+    (
+        chi2_quantile(3, 0.025).unwrap_or(0.2158),
+        chi2_quantile(3, 0.975).unwrap_or(9.3484),
+    )
+}
+
+/// The NEES rows as a text table with a plain reading per filter.
+pub fn nees_table(rows: &[NeesRow], seeds: core::ops::Range<u64>) -> String {
+    if rows.is_empty() {
+        return String::new();
+    }
+    let (lo, hi) = band();
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "consistency on the fault-free scenario (no outliers, noise changes or odometer faults), seeds {}–{}, after the first {:.0} % of each run:",
+        seeds.start,
+        seeds.end.saturating_sub(1),
+        SETTLING_SHARE * 100.0
+    );
+    let mut t = TextTable::new(
+        [
+            "filter",
+            "position NEES mean (3 expected)",
+            &format!("in [{lo:.2}, {hi:.2}]"),
+            "epochs",
+            "failed runs",
+            "reading",
+        ]
+        .map(String::from)
+        .to_vec(),
+    );
+    for r in rows {
+        let reading = match r.mean {
+            None => "no NEES (no single covariance)",
+            Some(m) if m > OVERCONFIDENT_ABOVE => "over-confident",
+            Some(m) if m < CONSERVATIVE_BELOW => "conservative",
+            Some(_) => "consistent",
+        };
+        t.row(vec![
+            r.label.clone(),
+            r.mean.map_or("—".into(), |m| format!("{m:.2}")),
+            r.inside
+                .map_or("—".into(), |s| format!("{:.0} %", 100.0 * s)),
+            r.epochs.to_string(),
+            r.failed.to_string(),
+            reading.to_string(),
+        ]);
+    }
+    let _ = writeln!(out, "{t}");
+    let _ = writeln!(
+        out,
+        "   reading: mean NEES above {OVERCONFIDENT_ABOVE} over-confident, below {CONSERVATIVE_BELOW} conservative, else consistent\n"
+    );
+    out
+}
