@@ -239,7 +239,10 @@ fn execute(
         for note in p.disclosures {
             text.push_str(&format!("disclosure: {note}\n"));
         }
-        text.push_str(&format!("verdict: {}\n", p.verdict));
+        text.push_str(&format!(
+            "verdict (of the full-length runs and study): {}\n",
+            p.verdict
+        ));
     }
     let dir = args.out.join(slug(&scenario.name));
     std::fs::create_dir_all(&dir).map_err(|e| CliError::io(&dir, e))?;
