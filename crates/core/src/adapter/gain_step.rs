@@ -115,6 +115,7 @@ impl<T: Real, const M: usize> GainStep<'static, T, M> {
 
     /// Like [`new`](Self::new) with the Cholesky factor of `H P⁻ Hᵀ + R`
     /// already known (square-root forms have it).
+    #[inline(always)]
     pub fn with_factor(
         innovation: SVector<T, M>,
         predicted: SMatrix<T, M, M>,
@@ -145,6 +146,7 @@ impl<T: Real, const M: usize> GainStep<'static, T, M> {
 impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
     /// Like [`with_factor`](GainStep::with_factor), the split computed by
     /// `split` only if an adapter asks for it.
+    #[inline(always)]
     pub(crate) fn with_lazy_split(
         innovation: SVector<T, M>,
         predicted: SMatrix<T, M, M>,
@@ -164,6 +166,7 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
 
     /// The same view without the source of a split not yet computed: what
     /// the form reads after the adapters (which no longer need the split).
+    #[inline(always)]
     pub(crate) fn detached(self) -> GainStep<'static, T, M> {
         GainStep {
             raw_innovation: self.raw_innovation,

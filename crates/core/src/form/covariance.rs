@@ -209,21 +209,24 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             return Ok(done.rejected(nu));
         }
 
+        // Borrowed, not moved: the matrices are hundreds of bytes each.
+        let refaded;
         let (prior, hp, hph) = if fade == T::one() {
-            (prior, hp, hph)
+            (&prior, &hp, &hph)
         } else {
             let prior = self.cov.prior(fade);
             let hp = h * prior;
             let hph = sandwich_transposed(&hp, &h);
-            (prior, hp, hph)
+            refaded = (prior, hp, hph);
+            (&refaded.0, &refaded.1, &refaded.2)
         };
         let (r_used, nu_used) = done.used()?;
         let c = hph + r_used;
         let r_factor = r_factor.filter(|_| !done.step.noise_changed());
         let gain = joseph_gain(
-            &prior,
-            &hp,
-            &hph,
+            prior,
+            hp,
+            hph,
             &r_used,
             r_factor.as_ref(),
             &c,
@@ -236,7 +239,7 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         let total_fade = self.cov.total_fade(fade);
         self.cov.commit(gain.covariance);
         adapter.after_update(
-            &Posterior::new(&nu_used, &hph, &r_used, &gain.factor),
+            &Posterior::new(&nu_used, hph, &r_used, &gain.factor),
             &mut done.adapters,
         );
         Ok(done.accepted(nu, c, &gain.factor, total_fade))

@@ -96,6 +96,7 @@ pub(crate) fn not_pd(index: usize) -> FilterError {
 /// Builds the adapters' view from the innovation, `H P⁻ Hᵀ`, its split and
 /// `R`, failing with the pivot index if `H P⁻ Hᵀ + R` is not positive
 /// definite, and runs the adapters on it.
+#[inline(always)]
 pub(crate) fn adapt_checked<T: Real, const M: usize, A: NoiseAdapter<T, M>>(
     adapter: &mut A,
     innovation: SVector<T, M>,
@@ -110,6 +111,7 @@ pub(crate) fn adapt_checked<T: Real, const M: usize, A: NoiseAdapter<T, M>>(
 
 /// [`adapt_checked`] with the split computed by `split` only if an adapter
 /// asks for it.
+#[inline(always)]
 pub(crate) fn adapt_checked_lazy<T: Real, const M: usize, A: NoiseAdapter<T, M>>(
     adapter: &mut A,
     innovation: SVector<T, M>,
@@ -123,6 +125,7 @@ pub(crate) fn adapt_checked_lazy<T: Real, const M: usize, A: NoiseAdapter<T, M>>
 }
 
 /// Runs the adapters on a freshly built view.
+#[inline(always)]
 pub(crate) fn adapt<T: Real, const M: usize, A: NoiseAdapter<T, M>>(
     adapter: &mut A,
     mut step: GainStep<'_, T, M>,
