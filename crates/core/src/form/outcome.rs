@@ -156,6 +156,7 @@ impl<T: Real, const M: usize, R> AdaptedStep<T, M, R> {
     }
 
     /// The noise and innovation the adapters settled on, checked finite.
+    #[inline(always)]
     pub fn used(&self) -> Result<(SMatrix<T, M, M>, SVector<T, M>), FilterError> {
         let (r, nu) = (*self.step.noise(), *self.step.innovation());
         ensure_finite(&r, Quantity::MeasurementNoise)?;
@@ -164,6 +165,7 @@ impl<T: Real, const M: usize, R> AdaptedStep<T, M, R> {
     }
 
     /// The report of a measurement an adapter rejected.
+    #[inline(always)]
     pub fn rejected(self, innovation: SVector<T, M>) -> UpdateReport<T, M, R> {
         UpdateReport {
             innovation,
@@ -182,6 +184,7 @@ impl<T: Real, const M: usize, R> AdaptedStep<T, M, R> {
 
     /// The report of an accepted update with innovation covariance `c`
     /// (lower factor `l`) and total fade `fade`.
+    #[inline(always)]
     pub fn accepted(
         self,
         innovation: SVector<T, M>,
