@@ -14,6 +14,8 @@ use kestrel_cli::process::{process, ProcessArgs};
 use kestrel_cli::simulate::{simulate, SimulateArgs};
 use kestrel_io::process::summary;
 
+mod support;
+
 fn sim(seed: u64, duration: f64) -> PathBuf {
     static N: AtomicUsize = AtomicUsize::new(0);
     let k = N.fetch_add(1, Ordering::Relaxed);
@@ -31,19 +33,10 @@ fn sim(seed: u64, duration: f64) -> PathBuf {
     dir
 }
 
+/// A run of the simulated files in `dir` with their `process.toml`, no
+/// outages.
 fn args(dir: &Path, out: &str) -> ProcessArgs {
-    ProcessArgs {
-        imu: dir.join("imu.txt"),
-        gnss: Some(dir.join("gnss.txt")),
-        odo: false,
-        odometer: None,
-        truth: Some(dir.join("truth.nav")),
-        config: dir.join("process.toml"),
-        out: dir.join(out),
-        outages: Vec::new(),
-        no_plots: true,
-        smooth: false,
-    }
+    support::run_args(dir, "process.toml", out, &[])
 }
 
 /// Rewrites the IMU file without the data lines whose time is in
