@@ -1,14 +1,15 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
-use super::outcome::{adapt_checked, adapt_checked_lazy, joseph_gain, kalman_gain, not_pd};
+use super::outcome::{adapt_checked, adapt_checked_lazy, joseph_gain, negated_kalman_gain, not_pd};
 use super::pending::PendingCovariance;
 use super::{sequential, FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::contract::{check_covariance, check_diagonal, check_noise_cached};
 use crate::error::ensure_finite;
 use crate::linalg::{
-    cholesky, joseph_factored_noise, mirror_lower, sandwich, sandwich_transposed, solve_lower,
+    cholesky, joseph_factored_noise_negated, mirror_lower, sandwich, sandwich_transposed,
+    solve_lower,
 };
 use crate::{
     FilterError, LinearizedMeasurement, LinearizedProcess, Quantity, Real, StateSpace, UpdateReport,
@@ -232,7 +233,7 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             &c,
             done.factor_if_unfaded(),
         )?;
-        let x_new = space.add(x, &(gain.k * nu_used));
+        let x_new = space.add(x, &gain.correction(&nu_used));
         ensure_finite(&x_new, Quantity::UpdatedState)?;
 
         *x = x_new;
@@ -271,10 +272,11 @@ impl<T: Real, const N: usize> CovarianceForm<T, N> {
         let nis = white.norm_squared();
         // The steps of `joseph_gain` with the factors at hand, and nothing
         // returned by value that is not needed.
-        let k = kalman_gain(&l, &hp);
-        let covariance = joseph_factored_noise(prior, &k, &hp.transpose(), &hph, r_factor);
+        let negated_k = negated_kalman_gain(&l, &hp);
+        let covariance =
+            joseph_factored_noise_negated(prior, &negated_k, &hp.transpose(), &hph, r_factor);
         ensure_finite(&covariance, Quantity::UpdatedCovariance)?;
-        let x_new = space.add(x, &(k * nu));
+        let x_new = space.add(x, &-(negated_k * nu));
         ensure_finite(&x_new, Quantity::UpdatedState)?;
         *x = x_new;
         let fade = self.cov.total_fade(T::one());

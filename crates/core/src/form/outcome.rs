@@ -6,32 +6,41 @@ use nalgebra::{SMatrix, SVector};
 use crate::adapter::{GainStep, NoiseAdapter};
 use crate::error::ensure_finite;
 use crate::linalg::{
-    cholesky, cholesky_semidefinite, joseph_expanded, joseph_factored_noise, solve_lower,
+    cholesky, cholesky_semidefinite, joseph_expanded, joseph_factored_noise_negated, solve_lower,
     solve_lower_transpose,
 };
 use crate::{FilterError, Quantity, Real, UpdateReport};
 
 /// The gain and covariance of a Kalman update.
 pub(crate) struct Gain<T: Real, const N: usize, const M: usize> {
-    /// `K = B C⁻¹`.
-    pub k: SMatrix<T, N, M>,
+    /// `−K = −B C⁻¹`, negated because the Joseph update takes it so (see
+    /// [`joseph_factored_noise_negated`]).
+    pub negated_k: SMatrix<T, N, M>,
     /// The updated covariance.
     pub covariance: SMatrix<T, N, N>,
     /// Lower Cholesky factor of `C`.
     pub factor: SMatrix<T, M, M>,
 }
 
-/// `K = B C⁻¹` from the lower Cholesky factor `L` of `C` and `Bᵀ`:
-/// `Kᵀ = L⁻ᵀ L⁻¹ Bᵀ`, two triangular solves.
+impl<T: Real, const N: usize, const M: usize> Gain<T, N, M> {
+    /// The state correction `K ν` (an exact sign change of `(−K) ν`).
+    pub fn correction(&self, innovation: &SVector<T, M>) -> SVector<T, N> {
+        -(self.negated_k * innovation)
+    }
+}
+
+/// `−K = −B C⁻¹` from the lower Cholesky factor `L` of `C` and `Bᵀ`:
+/// `Kᵀ = L⁻ᵀ L⁻¹ Bᵀ`, two triangular solves, then one pass that transposes
+/// and negates.
 #[inline]
-pub(crate) fn kalman_gain<T: Real, const N: usize, const M: usize>(
+pub(crate) fn negated_kalman_gain<T: Real, const N: usize, const M: usize>(
     factor: &SMatrix<T, M, M>,
     cross_t: &SMatrix<T, M, N>,
 ) -> SMatrix<T, N, M> {
     let mut kt = *cross_t;
     solve_lower(factor, &mut kt);
     solve_lower_transpose(factor, &mut kt);
-    kt.transpose()
+    SMatrix::from_fn(|i, j| -kt[(j, i)])
 }
 
 /// The gain `K = B C⁻¹` (two triangular solves on `Bᵀ`) and the expanded
@@ -43,7 +52,7 @@ pub(crate) fn kalman_gain<T: Real, const N: usize, const M: usize>(
 /// (the adapters' view factors the same matrix when nothing faded it).
 ///
 /// `R` enters the covariance through its factor
-/// ([`joseph_factored_noise`]): through `C`, the rounding of `K C Kᵀ` can
+/// ([`joseph_factored_noise`](crate::linalg::joseph_factored_noise)): through `C`, the rounding of `K C Kᵀ` can
 /// make the posterior indefinite when `C` is badly conditioned (an
 /// estimated `R` in `f32`). An `R` without a semi-definite factor is not a
 /// covariance; it keeps [`joseph_expanded`] with `C`.
@@ -60,19 +69,19 @@ pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
         Some(l) => *l,
         None => cholesky(c).map_err(|e| not_pd(e.index))?,
     };
-    let k = kalman_gain(&factor, cross_t);
+    let negated_k = negated_kalman_gain(&factor, cross_t);
     let b = cross_t.transpose();
     let covariance = match noise_factor {
-        Some(l) => joseph_factored_noise(prior, &k, &b, predicted, l),
+        Some(l) => joseph_factored_noise_negated(prior, &negated_k, &b, predicted, l),
         // An R an adapter set: factor it here.
         None => match cholesky_semidefinite(noise) {
-            Ok(l) => joseph_factored_noise(prior, &k, &b, predicted, &l),
-            Err(_) => joseph_expanded(prior, &k, &b, c),
+            Ok(l) => joseph_factored_noise_negated(prior, &negated_k, &b, predicted, &l),
+            Err(_) => joseph_expanded(prior, &-negated_k, &b, c),
         },
     };
     ensure_finite(&covariance, Quantity::UpdatedCovariance)?;
     Ok(Gain {
-        k,
+        negated_k,
         covariance,
         factor,
     })

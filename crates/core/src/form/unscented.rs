@@ -213,7 +213,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             &c,
             done.factor_if_unfaded(),
         )?;
-        let x_new = space.add(x, &(gain.k * nu_used));
+        let x_new = space.add(x, &gain.correction(&nu_used));
         ensure_finite(&x_new, Quantity::UpdatedState)?;
 
         *x = x_new;

@@ -93,8 +93,12 @@ pub fn cholesky_semidefinite<T: Real, const N: usize>(
     })
 }
 
-/// Right-looking column Cholesky. `pivot(k, d, a_kk, column_below)` turns the
-/// Schur pivot `d` into the diagonal (`None` = zero column) or an error.
+/// Left-looking column Cholesky: column `j` of the working copy receives
+/// `−l_jk · L[j.., k]` for every finished column `k < j`, each as one
+/// contiguous, bounds-check-free loop that vectorises, in the order of the
+/// textbook right-looking update (`a_ij − l_i0 l_j0 − l_i1 l_j1 − …`, the same
+/// rounding). `pivot(k, d, a_kk, column_below)` then turns the Schur pivot
+/// `d` into the diagonal (`None` = zero column) or an error.
 #[inline(always)]
 fn factor<T: Real, const N: usize>(
     a: &SMatrix<T, N, N>,
@@ -102,41 +106,34 @@ fn factor<T: Real, const N: usize>(
 ) -> Result<SMatrix<T, N, N>, NotPositiveDefinite> {
     let mut l = *a;
     let s = l.as_mut_slice();
-    for k in 0..N {
-        let d = s[k * N + k];
-        match pivot(k, d, a[(k, k)], &s[k * N + k + 1..k * N + N])? {
+    for j in 0..N {
+        let (done, rest) = s.split_at_mut(j * N);
+        let col = &mut rest[j..N];
+        for k in 0..j {
+            let ljk = done[k * N + j];
+            for (v, &lik) in col.iter_mut().zip(&done[k * N + j..k * N + N]) {
+                *v -= lik * ljk;
+            }
+        }
+        let (diag, below) = col.split_at_mut(1);
+        match pivot(j, diag[0], a[(j, j)], below)? {
             Some(root) => {
                 let inv = root.recip();
-                s[k * N + k] = root;
-                for v in &mut s[k * N + k + 1..k * N + N] {
+                diag[0] = root;
+                for v in below {
                     *v *= inv;
                 }
             }
             None => {
-                for v in &mut s[k * N + k..k * N + N] {
+                diag[0] = T::zero();
+                for v in below {
                     *v = T::zero();
                 }
-                continue;
             }
         }
-        // Trailing update of the lower triangle: A[j.., j] -= L[j.., k] L[j, k].
-        let (head, tail) = s.split_at_mut((k + 1) * N);
-        let lk = &head[k * N..k * N + N];
-        for j in k + 1..N {
-            let ljk = lk[j];
-            if ljk == T::zero() {
-                continue;
-            }
-            let col = &mut tail[(j - k - 1) * N..(j - k) * N];
-            for i in j..N {
-                col[i] -= lk[i] * ljk;
-            }
-        }
-    }
-    // Clear the strict upper triangle (it still holds the input).
-    for j in 1..N {
-        for i in 0..j {
-            s[j * N + i] = T::zero();
+        // The strict upper part of the column still holds the input.
+        for v in &mut rest[..j] {
+            *v = T::zero();
         }
     }
     Ok(l)

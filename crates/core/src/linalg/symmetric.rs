@@ -174,11 +174,28 @@ pub fn joseph_factored_noise<T: Real, const N: usize, const M: usize>(
     a: &SMatrix<T, M, M>,
     l: &SMatrix<T, M, M>,
 ) -> SMatrix<T, N, N> {
-    // P + E Kᵀ − K Bᵀ with E = K A − B, plus (K L)(K L)ᵀ.
-    let e = k * a - b;
-    let kl = k * l;
+    joseph_factored_noise_negated(p, &-k, b, a, l)
+}
+
+/// [`joseph_factored_noise`] given `K̄ = −K`, which the forms compute in the
+/// pass that transposes the gain anyway. With `Ē = B + K̄ A = −E` (`A` is
+/// symmetric, so `K̄ A` is the product `K̄ Aᵀ` the kernel forms, on top of
+/// `B`), `P⁺ = P + Ē K̄ᵀ + K̄ Bᵀ + (K̄ L)(K̄ L)ᵀ`: the terms of
+/// `joseph_factored_noise` with exact sign changes, and no elementwise pass
+/// to negate `K` or subtract `B`.
+#[inline]
+pub(crate) fn joseph_factored_noise_negated<T: Real, const N: usize, const M: usize>(
+    p: &SMatrix<T, N, N>,
+    nk: &SMatrix<T, N, M>,
+    b: &SMatrix<T, N, M>,
+    a: &SMatrix<T, M, M>,
+    l: &SMatrix<T, M, M>,
+) -> SMatrix<T, N, N> {
+    let mut ne = SMatrix::zeros();
+    add_products(&mut ne, Some(b), [nk], [a], false);
+    let nkl = nk * l;
     let mut out = SMatrix::zeros();
-    add_products(&mut out, Some(p), [&e, &-k, &kl], [k, b, &kl], true);
+    add_products(&mut out, Some(p), [&ne, nk, &nkl], [nk, b, &nkl], true);
     mirror_lower(&mut out);
     out
 }
