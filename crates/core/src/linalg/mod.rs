@@ -22,5 +22,6 @@ pub use symmetric::{
 pub use triangular::{solve_lower, solve_lower_transpose};
 pub use triangularize::add_columns;
 
+pub(crate) use product::add_products;
 pub(crate) use rank_one::{downdate_in_place, update_in_place};
 pub(crate) use symmetric::joseph_factored_noise_negated;
