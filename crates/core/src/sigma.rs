@@ -189,10 +189,10 @@ where
     P: ProcessModel<T, N>,
     S: StateSpace<T, N>,
 {
-    let chi = points(x, s, w.spread, space);
     let y0 = model.propagate(x, dt);
     ensure_finite(&y0, Quantity::PropagatedState)?;
-    let mut ys = chi;
+    // Propagated in place: the points are not needed after.
+    let mut ys = points(x, s, w.spread, space);
     for pair in ys.iter_mut() {
         for v in pair.iter_mut() {
             *v = model.propagate(v, dt);

@@ -8,8 +8,8 @@ use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep}
 use crate::contract::check_covariance;
 use crate::error::ensure_finite;
 use crate::linalg::{
-    add_columns, cholesky_semidefinite, downdate_in_place, mirror_lower, solve_lower,
-    solve_lower_transpose, update_in_place, weighted_rank_one,
+    add_columns, add_columns_by_rows, cholesky_semidefinite, downdate_in_place, mirror_lower,
+    solve_lower, solve_lower_transpose, update_in_place, weighted_rank_one,
 };
 use crate::sigma::{self, MeasuredSigma, MerweParams, Pairs, SigmaWeights};
 use crate::{
@@ -186,13 +186,25 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
         pairs: &mut Pairs<T, D, N>,
         sqrt_w: T,
     ) {
-        let cols = pairs.as_flattened_mut();
-        for c in cols.iter_mut() {
-            *c *= sqrt_w;
-        }
         match method {
-            TimeUpdate::Householder => add_columns(start, cols),
+            TimeUpdate::Householder => {
+                // Gathered by rows, scaled on the way (see
+                // `add_columns_by_rows`).
+                let mut rows = [[[T::zero(); N]; 2]; D];
+                for (i, pair) in pairs.iter().enumerate() {
+                    for (row, (&plus, &minus)) in rows.iter_mut().zip(pair[0].iter().zip(&pair[1]))
+                    {
+                        row[0][i] = plus * sqrt_w;
+                        row[1][i] = minus * sqrt_w;
+                    }
+                }
+                add_columns_by_rows(start, &mut rows);
+            }
             TimeUpdate::RankOne => {
+                let cols = pairs.as_flattened_mut();
+                for c in cols.iter_mut() {
+                    *c *= sqrt_w;
+                }
                 for c in cols.iter_mut() {
                     // Adding a finite PSD term cannot fail; non-finite input
                     // was rejected before.

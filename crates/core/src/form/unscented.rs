@@ -193,21 +193,24 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             return Ok(done.rejected(nu));
         }
 
+        // Borrowed, not moved: the sigma set and P are kilobytes.
+        let refaded;
         let (prior, measured, pzz) = if fade == T::one() {
-            (prior, measured, pzz)
+            (&prior, &measured, &pzz)
         } else {
             let prior = self.cov.prior(fade);
             let measured = sigma::measure(x, &factor(&prior)?, &w, model, space)?;
             let pzz = measured.covariance(&w);
-            (prior, measured, pzz)
+            refaded = (prior, measured, pzz);
+            (&refaded.0, &refaded.1, &refaded.2)
         };
         let (r_used, nu_used) = done.used()?;
         let c = pzz + r_used;
         let r_factor = (!done.step.noise_changed()).then_some(r_factor);
         let gain = joseph_gain(
-            &prior,
+            prior,
             &measured.cross.transpose(),
-            &pzz,
+            pzz,
             &r_used,
             r_factor.as_ref(),
             &c,
@@ -220,7 +223,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         let total_fade = self.cov.total_fade(fade);
         self.cov.commit(gain.covariance);
         adapter.after_update(
-            &Posterior::new(&nu_used, &pzz, &r_used, &gain.factor),
+            &Posterior::new(&nu_used, pzz, &r_used, &gain.factor),
             &mut done.adapters,
         );
         Ok(done.accepted(nu, c, &gain.factor, total_fade))

@@ -132,9 +132,12 @@ pub(crate) fn downdate_in_place<T: Real, const N: usize>(
             return Err(k);
         }
         let r = r2.sqrt();
-        let c = r / a;
-        let sn = b / a;
-        let inv_c = c.recip();
+        // Two divisions per pivot, not three: c = r / a, s = b / a through
+        // 1 / a, and 1 / c = a / r.
+        let inv_a = a.recip();
+        let c = r * inv_a;
+        let sn = b * inv_a;
+        let inv_c = a / r;
         s[k * N + k] = r;
         let col = &mut s[k * N + k + 1..k * N + N];
         let rest = &mut v[k + 1..];
