@@ -132,32 +132,26 @@ fn weighted_covariance<T: Real, const D: usize, const N: usize>(
     pairs: &Pairs<T, D, N>,
     w: &SigmaWeights<T>,
 ) -> SMatrix<T, D, D> {
-    let (plus, minus) = deviations(pairs);
-    let (plus_w, minus_w) = (plus * w.other, minus * w.other);
+    // Gathered element by element, the weighted copies on the way (whole
+    // column copies and matrix-times-scalar temporaries cost a `memcpy`
+    // call each).
+    let mut plus = SMatrix::<T, D, N>::zeros();
+    let mut minus = SMatrix::<T, D, N>::zeros();
+    let mut plus_w = SMatrix::<T, D, N>::zeros();
+    let mut minus_w = SMatrix::<T, D, N>::zeros();
+    for (i, [dp, dm]) in pairs.iter().enumerate() {
+        for r in 0..D {
+            plus[(r, i)] = dp[r];
+            minus[(r, i)] = dm[r];
+            plus_w[(r, i)] = dp[r] * w.other;
+            minus_w[(r, i)] = dm[r] * w.other;
+        }
+    }
     let mut p = SMatrix::zeros();
     add_products(&mut p, None, [&plus_w, &minus_w], [&plus, &minus], true);
     add_weighted_outer_lower(&mut p, w.cov0, center);
     mirror_lower(&mut p);
     p
-}
-
-/// The plus and minus deviations of `pairs` as the columns of two matrices.
-#[inline]
-fn deviations<T: Real, const D: usize, const N: usize>(
-    pairs: &Pairs<T, D, N>,
-) -> (SMatrix<T, D, N>, SMatrix<T, D, N>) {
-    let mut plus = SMatrix::<T, D, N>::zeros();
-    let mut minus = SMatrix::<T, D, N>::zeros();
-    for ((p, m), [dp, dm]) in plus
-        .column_iter_mut()
-        .zip(minus.column_iter_mut())
-        .zip(pairs)
-    {
-        let (mut p, mut m) = (p, m);
-        p.copy_from(dp);
-        m.copy_from(dm);
-    }
-    (plus, minus)
 }
 
 /// The unscented transform of the state through a process model.
