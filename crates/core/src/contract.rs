@@ -139,17 +139,18 @@ pub fn check_time_step<T: Real>(dt: T) -> Result<(), FilterError> {
 
 /// Checks `q` unless it equals, element for element, `checked` (a matrix
 /// that passed the check before): a model returning the same `Q` every
-/// step is factored once.
+/// step is factored once. `Ok(true)` when `q` differs from `checked` (and
+/// passed), `Ok(false)` when it is the same matrix.
 pub(crate) fn check_noise_cached<T: Real, const N: usize>(
     q: &SMatrix<T, N, N>,
     checked: &SMatrix<T, N, N>,
     what: Quantity,
-) -> Result<(), FilterError> {
+) -> Result<bool, FilterError> {
     // A slice comparison (a plain loop the compiler vectorises) rather than
     // the matrix `==`, which walks a generic iterator: ~10× fewer
     // instructions at N = 15. NaN never compares equal, so it is checked.
     if q.as_slice() == checked.as_slice() {
-        return Ok(());
+        return Ok(false);
     }
     ensure_finite(q, what)?;
     check_symmetric(q, what)?;
@@ -157,10 +158,10 @@ pub(crate) fn check_noise_cached<T: Real, const N: usize>(
     // semi-definite (Gershgorin), which settles diagonal and nearly diagonal
     // noise in O(N²); only the others are factored.
     if diagonally_dominant(q) {
-        return Ok(());
+        return Ok(true);
     }
     cholesky_semidefinite(q)
-        .map(|_| ())
+        .map(|_| true)
         .map_err(|e| FilterError::NotPositiveDefinite {
             what,
             index: e.index,
@@ -193,7 +194,10 @@ mod tests {
         let zero = Matrix3::<f64>::zeros();
         let dominant = Matrix3::new(2.0, -1.0, 0.5, -1.0, 3.0, 1.0, 0.5, 1.0, 1.5);
         assert!(diagonally_dominant(&dominant));
-        assert!(check_noise_cached(&dominant, &zero, Quantity::ProcessNoise).is_ok());
+        assert_eq!(
+            check_noise_cached(&dominant, &zero, Quantity::ProcessNoise),
+            Ok(true)
+        );
         // PSD but not dominant: factored.
         let a = Matrix3::new(1.0, 2.0, 0.0, 0.5, 1.0, 3.0, 1.0, 0.0, 1.0);
         let psd = a * a.transpose();
@@ -209,7 +213,10 @@ mod tests {
             })
         );
         // Equal to the checked one: accepted without a look; NaN never is.
-        assert!(check_noise_cached(&psd, &psd, Quantity::ProcessNoise).is_ok());
+        assert_eq!(
+            check_noise_cached(&psd, &psd, Quantity::ProcessNoise),
+            Ok(false)
+        );
         let mut nan = psd;
         nan[(2, 2)] = f64::NAN;
         assert!(check_noise_cached(&nan, &nan, Quantity::ProcessNoise).is_err());

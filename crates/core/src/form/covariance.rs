@@ -8,7 +8,7 @@ use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::contract::{check_covariance, check_diagonal, check_noise_cached};
 use crate::error::ensure_finite;
 use crate::linalg::{
-    cholesky, joseph_factored_noise_negated, mirror_lower, sandwich, sandwich_transposed,
+    cholesky, joseph_factored_noise_negated, mirror_lower, sandwich_into, sandwich_transposed,
     solve_lower,
 };
 use crate::{
@@ -112,22 +112,27 @@ impl<T: Real, const N: usize, P: LinearizedProcess<T, N>> PredictForm<T, N, P>
         _space: &S,
     ) -> Result<(), FilterError> {
         let mut q = model.noise(x, dt);
-        check_noise_cached(&q, self.cov.noise(), Quantity::ProcessNoise)?;
-        mirror_lower(&mut q);
+        let changed = check_noise_cached(&q, self.cov.noise(), Quantity::ProcessNoise)?;
+        if changed {
+            mirror_lower(&mut q);
+        }
         let phi = model.transition(x, dt);
         ensure_finite(&phi, Quantity::Transition)?;
         let x_new = model.propagate(x, dt);
         ensure_finite(&x_new, Quantity::PropagatedState)?;
-        let propagated = match self.cov.committed() {
-            Some(p) => sandwich(&phi, p),
-            None => sandwich(&phi, &self.cov.prior(T::one())),
-        };
-        ensure_finite(&propagated, Quantity::PropagatedCovariance)?;
+        // Φ P Φᵀ into the spare buffer, current only once checked (no
+        // copy either way). Two predictions in a row propagate the prior.
+        let prior = self.cov.is_pending().then(|| self.cov.prior(T::one()));
+        self.cov.fill_spare(|current, spare| {
+            sandwich_into(&phi, prior.as_ref().unwrap_or(current), spare);
+            ensure_finite(spare, Quantity::PropagatedCovariance)
+        })?;
 
         let mut step = PriorStep::new(dt);
         adapter.after_predict(&mut step);
         *x = x_new;
-        self.cov.predicted(propagated, q, step.fade_factor());
+        self.cov
+            .predicted_spare(changed.then_some(&q), step.fade_factor());
         Ok(())
     }
 }
@@ -225,6 +230,7 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         let c = hph + r_used;
         let r_factor = r_factor.filter(|_| !done.step.noise_changed());
         let gain = joseph_gain(
+            self.cov.spare(),
             prior,
             hp,
             hph,
@@ -238,7 +244,7 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
 
         *x = x_new;
         let total_fade = self.cov.total_fade(fade);
-        self.cov.commit(gain.covariance);
+        self.cov.commit_spare();
         adapter.after_update(
             &Posterior::new(&nu_used, hph, &r_used, &gain.factor),
             &mut done.adapters,
@@ -273,14 +279,17 @@ impl<T: Real, const N: usize> CovarianceForm<T, N> {
         // The steps of `joseph_gain` with the factors at hand, and nothing
         // returned by value that is not needed.
         let negated_k = negated_kalman_gain(&l, &hp);
-        let covariance =
-            joseph_factored_noise_negated(prior, &negated_k, &hp.transpose(), &hph, r_factor);
-        ensure_finite(&covariance, Quantity::UpdatedCovariance)?;
+        // Into the spare buffer, current only once everything is checked.
+        self.cov.fill_spare(|_, covariance| {
+            let b = hp.transpose();
+            joseph_factored_noise_negated(covariance, prior, &negated_k, &b, &hph, r_factor);
+            ensure_finite(covariance, Quantity::UpdatedCovariance)
+        })?;
         let x_new = space.add(x, &-(negated_k * nu));
         ensure_finite(&x_new, Quantity::UpdatedState)?;
         *x = x_new;
         let fade = self.cov.total_fade(T::one());
-        self.cov.commit(covariance);
+        self.cov.commit_spare();
         Ok(UpdateReport {
             innovation: nu,
             innovation_used: nu,

@@ -11,13 +11,12 @@ use crate::linalg::{
 };
 use crate::{FilterError, Quantity, Real, UpdateReport};
 
-/// The gain and covariance of a Kalman update.
+/// The gain of a Kalman update (its covariance is written into the
+/// caller's buffer).
 pub(crate) struct Gain<T: Real, const N: usize, const M: usize> {
     /// `−K = −B C⁻¹`, negated because the Joseph update takes it so (see
     /// [`joseph_factored_noise_negated`]).
     pub negated_k: SMatrix<T, N, M>,
-    /// The updated covariance.
-    pub covariance: SMatrix<T, N, N>,
     /// Lower Cholesky factor of `C`.
     pub factor: SMatrix<T, M, M>,
 }
@@ -44,7 +43,7 @@ pub(crate) fn negated_kalman_gain<T: Real, const N: usize, const M: usize>(
 }
 
 /// The gain `K = B C⁻¹` (two triangular solves on `Bᵀ`) and the expanded
-/// Joseph update of `prior`, for the cross covariance `B = P⁻ Hᵀ` (or `P_xz`),
+/// Joseph update of `prior` (into `covariance`), for the cross covariance `B = P⁻ Hᵀ` (or `P_xz`),
 /// given transposed, the predicted measurement covariance `predicted`
 /// (`H P⁻ Hᵀ` or `P_zz`), the noise `noise` (with its lower Cholesky factor
 /// `noise_factor` when the caller has it) and `c = predicted + noise`.
@@ -56,7 +55,9 @@ pub(crate) fn negated_kalman_gain<T: Real, const N: usize, const M: usize>(
 /// make the posterior indefinite when `C` is badly conditioned (an
 /// estimated `R` in `f32`). An `R` without a semi-definite factor is not a
 /// covariance; it keeps [`joseph_expanded`] with `C`.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
+    covariance: &mut SMatrix<T, N, N>,
     prior: &SMatrix<T, N, N>,
     cross_t: &SMatrix<T, M, N>,
     predicted: &SMatrix<T, M, M>,
@@ -71,20 +72,18 @@ pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
     };
     let negated_k = negated_kalman_gain(&factor, cross_t);
     let b = cross_t.transpose();
-    let covariance = match noise_factor {
-        Some(l) => joseph_factored_noise_negated(prior, &negated_k, &b, predicted, l),
+    match noise_factor {
+        Some(l) => joseph_factored_noise_negated(covariance, prior, &negated_k, &b, predicted, l),
         // An R an adapter set: factor it here.
         None => match cholesky_semidefinite(noise) {
-            Ok(l) => joseph_factored_noise_negated(prior, &negated_k, &b, predicted, &l),
-            Err(_) => joseph_expanded(prior, &-negated_k, &b, c),
+            Ok(l) => {
+                joseph_factored_noise_negated(covariance, prior, &negated_k, &b, predicted, &l)
+            }
+            Err(_) => *covariance = joseph_expanded(prior, &-negated_k, &b, c),
         },
-    };
-    ensure_finite(&covariance, Quantity::UpdatedCovariance)?;
-    Ok(Gain {
-        negated_k,
-        covariance,
-        factor,
-    })
+    }
+    ensure_finite(covariance, Quantity::UpdatedCovariance)?;
+    Ok(Gain { negated_k, factor })
 }
 
 /// The state of an update after the adapters' `before_gain`.

@@ -10,10 +10,17 @@ use crate::Real;
 /// holds the propagated part `Φ P Φᵀ`, the process noise `Q` and a fade `λ`
 /// apart, so an adapter can still fade the propagated part at the update;
 /// the prior is `λ Φ P Φᵀ + Q`.
-#[derive(Debug, Clone)]
+///
+/// The covariance has two buffers: a form writes the next one into the
+/// spare buffer, checks it, and only then makes it current, so a rejected
+/// step leaves the covariance as it was without a copy of `N × N` values
+/// either way.
+#[derive(Clone)]
 pub(crate) struct PendingCovariance<T: Real, const N: usize> {
-    /// The posterior, or the propagated part while a prediction is pending.
-    p: SMatrix<T, N, N>,
+    /// The posterior, or the propagated part while a prediction is pending
+    /// (`buffers[current]`), and the spare buffer.
+    buffers: [SMatrix<T, N, N>; 2],
+    current: usize,
     /// The pending process noise.
     q: SMatrix<T, N, N>,
     /// The pending fade of `p` from the after-predict hook.
@@ -23,16 +30,62 @@ pub(crate) struct PendingCovariance<T: Real, const N: usize> {
     states: FadeStates<N>,
 }
 
+impl<T: Real, const N: usize> core::fmt::Debug for PendingCovariance<T, N> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("PendingCovariance")
+            .field("p", self.p())
+            .field("q", &self.q)
+            .field("fade", &self.fade)
+            .field("pending", &self.pending)
+            .field("states", &self.states)
+            .finish()
+    }
+}
+
 impl<T: Real, const N: usize> PendingCovariance<T, N> {
     /// A posterior covariance `p` (taken as symmetric).
     pub fn new(p: SMatrix<T, N, N>) -> Self {
         Self {
-            p,
+            buffers: [p, SMatrix::zeros()],
+            current: 0,
             q: SMatrix::zeros(),
             fade: T::one(),
             pending: false,
             states: FadeStates::all(),
         }
+    }
+
+    /// The current buffer.
+    fn p(&self) -> &SMatrix<T, N, N> {
+        // `& 1`: the index is provably in bounds, so no check.
+        &self.buffers[self.current & 1]
+    }
+
+    /// The current buffer (read) and the spare one (to write), for a
+    /// result computed from the current covariance.
+    pub fn current_and_spare(&mut self) -> (&SMatrix<T, N, N>, &mut SMatrix<T, N, N>) {
+        let [a, b] = &mut self.buffers;
+        if self.current == 0 {
+            (a, b)
+        } else {
+            (b, a)
+        }
+    }
+
+    /// The spare buffer, to write the next covariance into.
+    pub fn spare(&mut self) -> &mut SMatrix<T, N, N> {
+        &mut self.buffers[(self.current ^ 1) & 1]
+    }
+
+    /// Writes the next covariance into the spare buffer with `fill`, which
+    /// also gets the current one.
+    #[inline(always)]
+    pub fn fill_spare<R>(
+        &mut self,
+        fill: impl FnOnce(&SMatrix<T, N, N>, &mut SMatrix<T, N, N>) -> R,
+    ) -> R {
+        let (current, spare) = self.current_and_spare();
+        fill(current, spare)
     }
 
     /// The process noise of the last prediction (zero before the first):
@@ -58,23 +111,27 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
         if self.pending {
             let lambda = self.fade * extra;
             if lambda == T::one() {
-                self.p + self.q
+                // Element by element into the result (nalgebra's `+`
+                // returns through a temporary and a copy).
+                let (p, q) = (self.p(), &self.q);
+                SMatrix::from_fn(|i, j| p[(i, j)] + q[(i, j)])
             } else {
-                self.states.scale_symmetric(&self.p, lambda) + self.q
+                self.states.scale_symmetric(self.p(), lambda) + self.q
             }
         } else if extra == T::one() {
-            self.p
+            *self.p()
         } else {
-            self.states.scale_symmetric(&self.p, extra)
+            self.states.scale_symmetric(self.p(), extra)
         }
     }
 
-    /// The fade applied to the propagated part with an extra fade `extra`.
-    /// The posterior itself, when no prediction is pending (no copy).
-    pub fn committed(&self) -> Option<&SMatrix<T, N, N>> {
-        (!self.pending).then_some(&self.p)
+    /// Whether a prediction is pending (the current buffer holds the
+    /// propagated part, not the posterior).
+    pub fn is_pending(&self) -> bool {
+        self.pending
     }
 
+    /// The fade applied to the propagated part with an extra fade `extra`.
     pub fn total_fade(&self, extra: T) -> T {
         if self.pending {
             self.fade * extra
@@ -87,15 +144,32 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
     /// (`q` is only read while a prediction is pending, so it is left as is
     /// rather than cleared: this runs on every update.)
     pub fn commit(&mut self, p: SMatrix<T, N, N>) {
-        self.p = p;
+        *self.spare() = p;
+        self.commit_spare();
+    }
+
+    /// Makes the spare buffer, which holds the posterior, current; nothing
+    /// is pending.
+    pub fn commit_spare(&mut self) {
+        self.current ^= 1;
         self.fade = T::one();
         self.pending = false;
     }
 
     /// Records a prediction: propagated part, process noise and fade.
     pub fn predicted(&mut self, propagated: SMatrix<T, N, N>, q: SMatrix<T, N, N>, fade: T) {
-        self.p = propagated;
-        self.q = q;
+        *self.spare() = propagated;
+        self.predicted_spare(Some(&q), fade);
+    }
+
+    /// Records a prediction whose propagated part is in the spare buffer,
+    /// with process noise `q` (`None`: the same as the last prediction's)
+    /// and fade `fade`.
+    pub fn predicted_spare(&mut self, q: Option<&SMatrix<T, N, N>>, fade: T) {
+        self.current ^= 1;
+        if let Some(q) = q {
+            self.q = *q;
+        }
         self.fade = fade;
         self.pending = true;
     }
@@ -110,10 +184,10 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
     ) -> (SMatrix<T, M, M>, SMatrix<T, M, M>) {
         match h {
             Some(h) if self.pending && self.states.is_all() => {
-                (sandwich(h, &self.p) * self.fade, sandwich(h, &self.q))
+                (sandwich(h, self.p()) * self.fade, sandwich(h, &self.q))
             }
             Some(h) if self.pending => (
-                sandwich(h, &self.states.scale_symmetric(&self.p, self.fade)),
+                sandwich(h, &self.states.scale_symmetric(self.p(), self.fade)),
                 sandwich(h, &self.q),
             ),
             _ => (*predicted, SMatrix::zeros()),
@@ -125,9 +199,45 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
 /// matter only while a prediction is pending.
 impl<T: Real, const N: usize> PartialEq for PendingCovariance<T, N> {
     fn eq(&self, other: &Self) -> bool {
-        self.p == other.p
+        self.p() == other.p()
             && self.pending == other.pending
             && self.states == other.states
             && (!self.pending || (self.q == other.q && self.fade == other.fade))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::Matrix2;
+
+    use super::*;
+
+    #[test]
+    fn the_spare_buffer_becomes_current_only_when_committed() {
+        let p0 = Matrix2::new(2.0, 0.5, 0.5, 1.0);
+        let mut cov = PendingCovariance::new(p0);
+        // Written but not committed (a step that failed its checks): the
+        // covariance is unchanged.
+        *cov.spare() = Matrix2::from_element(f64::NAN);
+        assert_eq!(cov.prior(1.0), p0);
+        assert_eq!(cov, PendingCovariance::new(p0));
+        // A prediction from the spare buffer, with a new Q, then one that
+        // keeps it.
+        let q = Matrix2::new(0.1, 0.0, 0.0, 0.2);
+        cov.fill_spare(|current, spare| *spare = current * 2.0);
+        cov.predicted_spare(Some(&q), 1.0);
+        assert!(cov.is_pending());
+        assert_eq!(cov.prior(1.0), p0 * 2.0 + q);
+        cov.fill_spare(|current, spare| *spare = current * 3.0);
+        cov.predicted_spare(None, 1.0);
+        assert_eq!(cov.prior(1.0), p0 * 6.0 + q);
+        assert_eq!(cov.noise(), &q);
+        // Committed through the spare buffer and by value.
+        *cov.spare() = p0;
+        cov.commit_spare();
+        assert!(!cov.is_pending());
+        assert_eq!(cov.prior(1.0), p0);
+        cov.commit(p0 * 4.0);
+        assert_eq!(cov.prior(1.0), p0 * 4.0);
     }
 }

@@ -208,6 +208,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         let c = pzz + r_used;
         let r_factor = (!done.step.noise_changed()).then_some(r_factor);
         let gain = joseph_gain(
+            self.cov.spare(),
             prior,
             &measured.cross.transpose(),
             pzz,
@@ -221,7 +222,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
 
         *x = x_new;
         let total_fade = self.cov.total_fade(fade);
-        self.cov.commit(gain.covariance);
+        self.cov.commit_spare();
         adapter.after_update(
             &Posterior::new(&nu_used, pzz, &r_used, &gain.factor),
             &mut done.adapters,

@@ -24,5 +24,5 @@ pub use triangularize::add_columns;
 
 pub(crate) use product::add_products;
 pub(crate) use rank_one::{downdate_in_place, update_in_place};
-pub(crate) use symmetric::joseph_factored_noise_negated;
+pub(crate) use symmetric::{joseph_factored_noise_negated, sandwich_into};
 pub(crate) use triangularize::add_columns_by_rows;

@@ -39,10 +39,23 @@ pub fn sandwich<T: Real, const R: usize, const C: usize>(
     a: &SMatrix<T, R, C>,
     p: &SMatrix<T, C, C>,
 ) -> SMatrix<T, R, R> {
+    let mut out = SMatrix::zeros();
+    sandwich_into(a, p, &mut out);
+    out
+}
+
+/// [`sandwich`] written into `out`.
+#[inline]
+pub(crate) fn sandwich_into<T: Real, const R: usize, const C: usize>(
+    a: &SMatrix<T, R, C>,
+    p: &SMatrix<T, C, C>,
+    out: &mut SMatrix<T, R, R>,
+) {
     // A P = A Pᵀ for the symmetric P.
     let mut ap = SMatrix::zeros();
     add_products(&mut ap, None, [a], [p], false);
-    sandwich_transposed(&ap, a)
+    add_products(out, None, [&ap], [a], true);
+    mirror_lower(out);
 }
 
 /// The symmetric product `B Aᵀ` where `B = A P` (or any product known to be
@@ -174,10 +187,12 @@ pub fn joseph_factored_noise<T: Real, const N: usize, const M: usize>(
     a: &SMatrix<T, M, M>,
     l: &SMatrix<T, M, M>,
 ) -> SMatrix<T, N, N> {
-    joseph_factored_noise_negated(p, &-k, b, a, l)
+    let mut out = SMatrix::zeros();
+    joseph_factored_noise_negated(&mut out, p, &-k, b, a, l);
+    out
 }
 
-/// [`joseph_factored_noise`] given `K̄ = −K`, which the forms compute in the
+/// [`joseph_factored_noise`] given `K̄ = −K`, written into `out`, which the forms compute in the
 /// pass that transposes the gain anyway. With `Ē = B + K̄ A = −E` (`A` is
 /// symmetric, so `K̄ A` is the product `K̄ Aᵀ` the kernel forms, on top of
 /// `B`), `P⁺ = P + Ē K̄ᵀ + K̄ Bᵀ + (K̄ L)(K̄ L)ᵀ`: the terms of
@@ -185,19 +200,18 @@ pub fn joseph_factored_noise<T: Real, const N: usize, const M: usize>(
 /// to negate `K` or subtract `B`.
 #[inline]
 pub(crate) fn joseph_factored_noise_negated<T: Real, const N: usize, const M: usize>(
+    out: &mut SMatrix<T, N, N>,
     p: &SMatrix<T, N, N>,
     nk: &SMatrix<T, N, M>,
     b: &SMatrix<T, N, M>,
     a: &SMatrix<T, M, M>,
     l: &SMatrix<T, M, M>,
-) -> SMatrix<T, N, N> {
+) {
     let mut ne = SMatrix::zeros();
     add_products(&mut ne, Some(b), [nk], [a], false);
     let nkl = nk * l;
-    let mut out = SMatrix::zeros();
-    add_products(&mut out, Some(p), [&ne, nk, &nkl], [nk, b, &nkl], true);
-    mirror_lower(&mut out);
-    out
+    add_products(out, Some(p), [&ne, nk, &nkl], [nk, b, &nkl], true);
+    mirror_lower(out);
 }
 
 #[cfg(test)]
