@@ -141,6 +141,7 @@ pub fn check_time_step<T: Real>(dt: T) -> Result<(), FilterError> {
 /// that passed the check before): a model returning the same `Q` every
 /// step is factored once. `Ok(true)` when `q` differs from `checked` (and
 /// passed), `Ok(false)` when it is the same matrix.
+#[inline(always)]
 pub(crate) fn check_noise_cached<T: Real, const N: usize>(
     q: &SMatrix<T, N, N>,
     checked: &SMatrix<T, N, N>,
@@ -152,16 +153,25 @@ pub(crate) fn check_noise_cached<T: Real, const N: usize>(
     if q.as_slice() == checked.as_slice() {
         return Ok(false);
     }
+    check_noise(q, what).map(|()| true)
+}
+
+/// The full check of [`check_noise_cached`], out of line.
+#[inline(never)]
+fn check_noise<T: Real, const N: usize>(
+    q: &SMatrix<T, N, N>,
+    what: Quantity,
+) -> Result<(), FilterError> {
     ensure_finite(q, what)?;
     check_symmetric(q, what)?;
     // A symmetric matrix with a non-negative, dominant diagonal is positive
     // semi-definite (Gershgorin), which settles diagonal and nearly diagonal
     // noise in O(N²); only the others are factored.
     if diagonally_dominant(q) {
-        return Ok(true);
+        return Ok(());
     }
     cholesky_semidefinite(q)
-        .map(|_| true)
+        .map(|_| ())
         .map_err(|e| FilterError::NotPositiveDefinite {
             what,
             index: e.index,

@@ -219,8 +219,9 @@ pub(crate) fn first_non_finite<T: crate::Real>(values: &[T]) -> Option<usize> {
 }
 
 /// Whether every element is finite, without an early exit so the check
-/// vectorises: `0 · v` is `±0` for a finite `v` and NaN for `±∞` or NaN, and
+/// vectorises (inlined into [`ensure_finite`]): `0 · v` is `±0` for a finite `v` and NaN for `±∞` or NaN, and
 /// NaN survives any sum. Eight independent lanes keep the adds parallel.
+#[inline(always)]
 fn all_finite<T: crate::Real>(values: &[T]) -> bool {
     const LANES: usize = 8;
     if values.len() < 2 * LANES {
@@ -246,7 +247,26 @@ fn all_finite<T: crate::Real>(values: &[T]) -> bool {
 
 /// `Err(NonFinite)` naming `what` and the row and column of the first
 /// non-finite element of `m` (a vector is a one-column matrix).
+///
+/// The passing check is inlined (it runs a dozen times a step, and at small
+/// sizes the call costs as much as the check); the error is built out of
+/// line.
+#[inline(always)]
 pub(crate) fn ensure_finite<T: crate::Real, const R: usize, const C: usize>(
+    m: &SMatrix<T, R, C>,
+    what: Quantity,
+) -> Result<(), FilterError> {
+    if all_finite(m.as_slice()) {
+        Ok(())
+    } else {
+        non_finite_error(m, what)
+    }
+}
+
+/// The error of [`ensure_finite`] for an `m` that has a non-finite element.
+#[cold]
+#[inline(never)]
+fn non_finite_error<T: crate::Real, const R: usize, const C: usize>(
     m: &SMatrix<T, R, C>,
     what: Quantity,
 ) -> Result<(), FilterError> {

@@ -31,6 +31,7 @@ impl<T: Real, const N: usize> CheckedNoise<T, N> {
     /// The lower Cholesky factor of `a` after the checks of
     /// [`check_covariance`], from the cache when `a` equals the matrix
     /// checked last (element for element, as supplied).
+    #[inline(always)]
     pub fn check<const M: usize>(
         &mut self,
         a: &SMatrix<T, M, M>,
@@ -40,6 +41,18 @@ impl<T: Real, const N: usize> CheckedNoise<T, N> {
         if M <= N && self.size == M && self.noise.as_slice()[..len] == *a.as_slice() {
             return Ok(SMatrix::from_column_slice(&self.factor.as_slice()[..len]));
         }
+        self.check_and_keep(a, what)
+    }
+
+    /// The full check of [`check`](Self::check), out of line, keeping the
+    /// result.
+    #[inline(never)]
+    fn check_and_keep<const M: usize>(
+        &mut self,
+        a: &SMatrix<T, M, M>,
+        what: Quantity,
+    ) -> Result<SMatrix<T, M, M>, FilterError> {
+        let len = M * M;
         let factor = check_covariance(a, what)?;
         if M <= N {
             self.noise.as_mut_slice()[..len].copy_from_slice(a.as_slice());

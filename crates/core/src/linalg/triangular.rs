@@ -13,6 +13,7 @@ use crate::Real;
 /// solve_lower(&l, &mut b);
 /// assert_eq!(b, Vector2::new(1.0, 2.0));
 /// ```
+#[inline]
 pub fn solve_lower<T: Real, const N: usize, const K: usize>(
     l: &SMatrix<T, N, N>,
     b: &mut SMatrix<T, N, K>,
@@ -43,6 +44,7 @@ pub fn solve_lower<T: Real, const N: usize, const K: usize>(
 /// solve_lower_transpose(&l, &mut b);
 /// assert_eq!(b, Vector2::new(1.0, 2.0));
 /// ```
+#[inline]
 pub fn solve_lower_transpose<T: Real, const N: usize, const K: usize>(
     l: &SMatrix<T, N, N>,
     b: &mut SMatrix<T, N, K>,
