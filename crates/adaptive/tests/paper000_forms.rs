@@ -388,11 +388,13 @@ fn paper_constructors_run_every_form() {
 /// A case the random search found: plain Sage–Husa (`b = 0.983`, no floor)
 /// under a 5.7× mismatched `R`, rare 40σ outliers and a 20 m jump. The
 /// estimate runs away (`R̂` above 10⁶ m², nearly singular) in both
-/// precisions. `f64` keeps going; `f32` stops with the typed error naming
-/// the innovation covariance, and its filter holds the last good, finite
-/// estimate.
+/// precisions. `f64` keeps going. `f32` used to stop here with the typed
+/// error naming the innovation covariance (which the property tests still
+/// accept, see [`f32_limit`]); since the Joseph update takes the negated
+/// gain and forms `B − K A` in one product, it keeps going too, and stays
+/// within a tenth of a standard deviation of the `f64` filter.
 #[test]
-fn a_runaway_sage_husa_estimate_stops_f32_with_a_typed_error() {
+fn a_runaway_sage_husa_estimate_in_f32_tracks_f64() {
     let s = Scenario {
         seed: 4130530363513276249,
         scale: 5.69952456287941,
@@ -423,24 +425,24 @@ fn a_runaway_sage_husa_estimate_stops_f32_with_a_typed_error() {
     let mut f32_filter = kestrel_core::Ekf::new(cv::x0::<f32>(), cv::p0::<f32>())
         .unwrap()
         .with_adapter(config.build::<f32>());
-    let e = support::run(
+    support::run(
         &mut f32_filter,
         &stream,
         &cv::sensor(&assumed),
         |_, _, _| {},
     )
-    .unwrap_err();
-    assert_eq!(
-        e,
-        FilterError::NotPositiveDefinite {
-            what: Quantity::InnovationCovariance,
-            index: 1
-        }
-    );
-    assert!(f32_filter.state().iter().all(|v| v.is_finite()));
+    .unwrap();
+    assert!(f32_filter.adapter().estimate()[(0, 0)] > 1e6);
     assert!(support::symmetric_pd(&f32_filter.covariance()));
-    // The check the property tests apply accepts exactly this failure.
-    let estimate = Some(*f32_filter.adapter().estimate());
-    assert_eq!(f32_limit(&f32_filter, estimate, e), Ok(()));
-    assert_eq!(f32_limit(&f32_filter, None, e), Err(e));
+    let p = f64_filter.covariance();
+    for i in 0..4 {
+        let gap = (f64::from(f32_filter.state()[i]) - f64_filter.state()[i]).abs();
+        assert!(
+            gap < 0.1 * p[(i, i)].sqrt(),
+            "state {i}: f32 {} against f64 {}, σ {}",
+            f32_filter.state()[i],
+            f64_filter.state()[i],
+            p[(i, i)].sqrt()
+        );
+    }
 }

@@ -17,8 +17,6 @@ pub(crate) struct Gain<T: Real, const N: usize, const M: usize> {
     /// `−K = −B C⁻¹`, negated because the Joseph update takes it so (see
     /// [`joseph_factored_noise_negated`]).
     pub negated_k: SMatrix<T, N, M>,
-    /// Lower Cholesky factor of `C`.
-    pub factor: SMatrix<T, M, M>,
 }
 
 impl<T: Real, const N: usize, const M: usize> Gain<T, N, M> {
@@ -47,8 +45,7 @@ pub(crate) fn negated_kalman_gain<T: Real, const N: usize, const M: usize>(
 /// given transposed, the predicted measurement covariance `predicted`
 /// (`H P⁻ Hᵀ` or `P_zz`), the noise `noise` (with its lower Cholesky factor
 /// `noise_factor` when the caller has it) and `c = predicted + noise`.
-/// `known` is the lower Cholesky factor of `c` if the caller already has it
-/// (the adapters' view factors the same matrix when nothing faded it).
+/// `factor` is the lower Cholesky factor of `c` (see [`factor_of`]).
 ///
 /// `R` enters the covariance through its factor
 /// ([`joseph_factored_noise`](crate::linalg::joseph_factored_noise)): through `C`, the rounding of `K C Kᵀ` can
@@ -64,13 +61,9 @@ pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
     noise: &SMatrix<T, M, M>,
     noise_factor: Option<&SMatrix<T, M, M>>,
     c: &SMatrix<T, M, M>,
-    known: Option<&SMatrix<T, M, M>>,
+    factor: &SMatrix<T, M, M>,
 ) -> Result<Gain<T, N, M>, FilterError> {
-    let factor = match known {
-        Some(l) => *l,
-        None => cholesky(c).map_err(|e| not_pd(e.index))?,
-    };
-    let negated_k = negated_kalman_gain(&factor, cross_t);
+    let negated_k = negated_kalman_gain(factor, cross_t);
     let b = cross_t.transpose();
     match noise_factor {
         Some(l) => joseph_factored_noise_negated(covariance, prior, &negated_k, &b, predicted, l),
@@ -83,7 +76,26 @@ pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
         },
     }
     ensure_finite(covariance, Quantity::UpdatedCovariance)?;
-    Ok(Gain { negated_k, factor })
+    Ok(Gain { negated_k })
+}
+
+/// The lower Cholesky factor of `c`: `known` when the caller has it (the
+/// adapters' view factors the same matrix when nothing faded it), else
+/// computed into `computed`. Borrowed either way, so a known factor is not
+/// copied.
+#[inline(always)]
+pub(crate) fn factor_of<'a, T: Real, const M: usize>(
+    c: &SMatrix<T, M, M>,
+    known: Option<&'a SMatrix<T, M, M>>,
+    computed: &'a mut SMatrix<T, M, M>,
+) -> Result<&'a SMatrix<T, M, M>, FilterError> {
+    match known {
+        Some(l) => Ok(l),
+        None => {
+            *computed = cholesky(c).map_err(|e| not_pd(e.index))?;
+            Ok(computed)
+        }
+    }
 }
 
 /// The state of an update after the adapters' `before_gain`.
@@ -151,25 +163,19 @@ pub(crate) fn adapt<T: Real, const M: usize, A: NoiseAdapter<T, M>>(
 }
 
 impl<T: Real, const M: usize, R> AdaptedStep<T, M, R> {
-    /// The factor of the view's innovation covariance when it is exactly
-    /// `predicted + R` as used for the gain: no fade was applied (a fade
-    /// makes the form recompute `predicted` from the faded prior, which
-    /// rounds differently from the view's update).
-    pub fn factor_if_unfaded(&self) -> Option<&SMatrix<T, M, M>> {
-        if self.step.fade_factor() == T::one() {
-            self.step.innovation_factor()
-        } else {
-            None
-        }
-    }
-
     /// The noise and innovation the adapters settled on, checked finite.
     #[inline(always)]
     pub fn used(&self) -> Result<(SMatrix<T, M, M>, SVector<T, M>), FilterError> {
-        let (r, nu) = (*self.step.noise(), *self.step.innovation());
-        ensure_finite(&r, Quantity::MeasurementNoise)?;
-        ensure_finite(&nu, Quantity::Measurement)?;
-        Ok((r, nu))
+        self.check_used()?;
+        Ok((*self.step.noise(), *self.step.innovation()))
+    }
+
+    /// Checks that the noise and innovation the adapters settled on
+    /// (`step.noise()`, `step.innovation()`, read by reference) are finite.
+    #[inline(always)]
+    pub fn check_used(&self) -> Result<(), FilterError> {
+        ensure_finite(self.step.noise(), Quantity::MeasurementNoise)?;
+        ensure_finite(self.step.innovation(), Quantity::Measurement)
     }
 
     /// The report of a measurement an adapter rejected.
@@ -190,18 +196,24 @@ impl<T: Real, const M: usize, R> AdaptedStep<T, M, R> {
         }
     }
 
-    /// The report of an accepted update with innovation covariance `c`
-    /// (lower factor `l`) and total fade `fade`.
+    /// `νᵀ C⁻¹ ν` of the innovation used, for `C = L Lᵀ`.
+    #[inline(always)]
+    pub fn adapted_nis(&self, l: &SMatrix<T, M, M>) -> T {
+        let mut white = *self.step.innovation();
+        solve_lower(l, &mut white);
+        white.norm_squared()
+    }
+
+    /// The report of an accepted update with innovation covariance `c`,
+    /// the [`adapted_nis`](Self::adapted_nis) and total fade `fade`.
     #[inline(always)]
     pub fn accepted(
         self,
         innovation: SVector<T, M>,
         c: SMatrix<T, M, M>,
-        l: &SMatrix<T, M, M>,
+        adapted_nis: T,
         fade: T,
     ) -> UpdateReport<T, M, R> {
-        let mut white = *self.step.innovation();
-        solve_lower(l, &mut white);
         UpdateReport {
             innovation,
             innovation_used: *self.step.innovation(),
@@ -209,7 +221,7 @@ impl<T: Real, const M: usize, R> AdaptedStep<T, M, R> {
             innovation_covariance: c,
             noise: *self.step.noise(),
             nis: self.nis,
-            adapted_nis: white.norm_squared(),
+            adapted_nis,
             fade,
             rejected: false,
             sequential: false,

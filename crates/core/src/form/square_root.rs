@@ -423,6 +423,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             &Posterior::new(&nu_used, &predicted, &r_used, &sz),
             &mut done.adapters,
         );
-        Ok(done.accepted(nu, c, &sz, total_fade))
+        let adapted_nis = done.adapted_nis(&sz);
+        Ok(done.accepted(nu, c, adapted_nis, total_fade))
     }
 }

@@ -1,7 +1,7 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
-use super::outcome::{adapt_checked, joseph_gain};
+use super::outcome::{adapt_checked, factor_of, joseph_gain};
 use super::pending::PendingCovariance;
 use super::{FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
@@ -204,29 +204,40 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             refaded = (prior, measured, pzz);
             (&refaded.0, &refaded.1, &refaded.2)
         };
-        let (r_used, nu_used) = done.used()?;
+        // By reference: `done.step` holds them (checked finite here).
+        done.check_used()?;
+        let (r_used, nu_used) = (done.step.noise(), done.step.innovation());
         let c = pzz + r_used;
         let r_factor = (!done.step.noise_changed()).then_some(r_factor);
+        // The view's factor of `C` is this `C`'s only when nothing faded
+        // (a fade recomputes `predicted` from the faded prior, which rounds
+        // differently from the view's update).
+        let known = (fade == T::one())
+            .then(|| done.step.innovation_factor())
+            .flatten();
+        let mut computed = SMatrix::zeros();
+        let factor = factor_of(&c, known, &mut computed)?;
         let gain = joseph_gain(
             self.cov.spare(),
             prior,
             &measured.cross.transpose(),
             pzz,
-            &r_used,
+            r_used,
             r_factor.as_ref(),
             &c,
-            done.factor_if_unfaded(),
+            factor,
         )?;
-        let x_new = space.add(x, &gain.correction(&nu_used));
+        let x_new = space.add(x, &gain.correction(nu_used));
         ensure_finite(&x_new, Quantity::UpdatedState)?;
 
         *x = x_new;
         let total_fade = self.cov.total_fade(fade);
         self.cov.commit_spare();
         adapter.after_update(
-            &Posterior::new(&nu_used, pzz, &r_used, &gain.factor),
+            &Posterior::new(nu_used, pzz, r_used, factor),
             &mut done.adapters,
         );
-        Ok(done.accepted(nu, c, &gain.factor, total_fade))
+        let adapted_nis = done.adapted_nis(factor);
+        Ok(done.accepted(nu, c, adapted_nis, total_fade))
     }
 }
