@@ -111,11 +111,10 @@ pub(crate) fn points<T: Real, const N: usize, S: StateSpace<T, N>>(
     space: &S,
 ) -> Pairs<T, N, N> {
     let mut chi = [[SVector::zeros(); 2]; N];
-    for (pair, column) in chi.iter_mut().zip(s.column_iter()) {
-        // Owned before scaling: a view times a scalar goes through nalgebra's
-        // generic iterator allocation, 10× the instructions of this loop.
-        let mut d: SVector<T, N> = column.into_owned();
-        d *= spread;
+    for (i, pair) in chi.iter_mut().enumerate() {
+        // Element by element: a view times a scalar, or a view made owned,
+        // goes through nalgebra's generic allocation and a `memcpy` call.
+        let d = SVector::<T, N>::from_fn(|r, _| s[(r, i)] * spread);
         pair[0] = space.add(x, &d);
         pair[1] = space.add(x, &-d);
     }

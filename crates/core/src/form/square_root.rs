@@ -8,8 +8,9 @@ use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep}
 use crate::contract::check_covariance;
 use crate::error::ensure_finite;
 use crate::linalg::{
-    add_columns, add_columns_by_rows, cholesky_semidefinite, downdate_in_place, mirror_lower,
-    solve_lower, solve_lower_transpose, update_in_place, weighted_rank_one,
+    add_columns, add_columns_by_rows, cholesky_semidefinite, downdate_columns_in_place,
+    downdate_in_place, mirror_lower, solve_lower, solve_lower_transpose, update_in_place,
+    weighted_rank_one,
 };
 use crate::sigma::{self, MeasuredSigma, MerweParams, Pairs, SigmaWeights};
 use crate::{
@@ -408,10 +409,16 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         ensure_finite(&x_new, Quantity::UpdatedState)?;
         let u = k * sz;
         let mut s_new = prior;
-        for j in 0..M {
-            let mut col = u.column(j).into_owned();
-            downdate_in_place(&mut s_new, &mut col)
-                .map_err(|index| FilterError::DowndateFailed { column: j, index })?;
+        let mut work = u;
+        if downdate_columns_in_place(&mut s_new, &mut work).is_err() {
+            // Which column and pivot failed, as the downdates one after
+            // the other report it (the same arithmetic, so they fail too).
+            s_new = prior;
+            for j in 0..M {
+                let mut col = u.column(j).into_owned();
+                downdate_in_place(&mut s_new, &mut col)
+                    .map_err(|index| FilterError::DowndateFailed { column: j, index })?;
+            }
         }
         ensure_finite(&s_new, Quantity::UpdatedCovariance)?;
 

@@ -120,10 +120,23 @@ fn factor<T: Real, const N: usize>(
         let column = |k: usize| &done[k * N + j..k * N + N];
         let mut k = 0;
         while N >= UNROLL_FROM && k + 4 <= j {
-            let f = [0, 1, 2, 3].map(|d| done[(k + d) * N + j]);
-            let (c0, c1, c2, c3) = (column(k), column(k + 1), column(k + 2), column(k + 3));
-            for ((((v, &a), &b), &c), &d) in col.iter_mut().zip(c0).zip(c1).zip(c2).zip(c3) {
-                *v = *v - a * f[0] - b * f[1] - c * f[2] - d * f[3];
+            // Scalars, not an array: four 8-byte stores read back as vectors
+            // stall store forwarding.
+            let (f0, f1, f2, f3) = (
+                done[k * N + j],
+                done[(k + 1) * N + j],
+                done[(k + 2) * N + j],
+                done[(k + 3) * N + j],
+            );
+            let len = col.len();
+            let (c0, c1, c2, c3) = (
+                &column(k)[..len],
+                &column(k + 1)[..len],
+                &column(k + 2)[..len],
+                &column(k + 3)[..len],
+            );
+            for i in 0..len {
+                col[i] = col[i] - c0[i] * f0 - c1[i] * f1 - c2[i] * f2 - c3[i] * f3;
             }
             k += 4;
         }

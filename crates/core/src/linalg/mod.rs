@@ -23,6 +23,6 @@ pub use triangular::{solve_lower, solve_lower_transpose};
 pub use triangularize::add_columns;
 
 pub(crate) use product::add_products;
-pub(crate) use rank_one::{downdate_in_place, update_in_place};
+pub(crate) use rank_one::{downdate_columns_in_place, downdate_in_place, update_in_place};
 pub(crate) use symmetric::{joseph_factored_noise_negated, sandwich_into};
 pub(crate) use triangularize::add_columns_by_rows;

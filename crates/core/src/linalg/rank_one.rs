@@ -150,6 +150,52 @@ pub(crate) fn downdate_in_place<T: Real, const N: usize>(
     Ok(())
 }
 
+/// `M` hyperbolic downdates of `s` by the columns of `u`, done pivot by
+/// pivot across the columns rather than column by column: the same
+/// arithmetic in the same order for every element (a column's pivot `k`
+/// reads column `k` of `s` after the previous columns' pivot `k`, and its
+/// own earlier pivots, exactly as one downdate after the other does), so
+/// the result is bit for bit that of [`downdate_in_place`] per column, but
+/// the `M` dependency chains of square roots and divisions overlap instead
+/// of running back to back. `u` is destroyed. `Err(())` when some pivot
+/// fails; `s` is then partly modified and must be discarded (the caller
+/// finds which column and pivot with the one-by-one downdates).
+pub(crate) fn downdate_columns_in_place<T: Real, const N: usize, const M: usize>(
+    s: &mut SMatrix<T, N, N>,
+    u: &mut SMatrix<T, N, M>,
+) -> Result<(), ()> {
+    let s = s.as_mut_slice();
+    let u = u.as_mut_slice();
+    let eps = epsilon::<T>();
+    for k in 0..N {
+        for j in 0..M {
+            let v = &mut u[j * N..j * N + N];
+            let b = v[k];
+            if b == T::zero() {
+                continue;
+            }
+            let a = s[k * N + k];
+            let r2 = (a - b) * (a + b);
+            if !(r2 > eps * a * a && r2.is_finite()) {
+                return Err(());
+            }
+            let r = r2.sqrt();
+            let inv_a = a.recip();
+            let c = r * inv_a;
+            let sn = b * inv_a;
+            let inv_c = a / r;
+            s[k * N + k] = r;
+            let col = &mut s[k * N + k + 1..k * N + N];
+            for (t, w) in col.iter_mut().zip(v[k + 1..].iter_mut()) {
+                let tn = (*t - sn * *w) * inv_c;
+                *t = tn;
+                *w = c * *w - sn * tn;
+            }
+        }
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
