@@ -268,3 +268,27 @@ where
         cross,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn weighted_covariance_equals_the_sum_of_weighted_outer_products() {
+        // 5-dimensional deviations of 7 pairs: tiles and edges of the
+        // product kernel.
+        let pairs: Pairs<f64, 5, 7> = core::array::from_fn(|i| {
+            [0, 1].map(|s| SVector::from_fn(|r, _| ((r * 7 + i * 3 + s * 11) as f64 * 0.37).sin()))
+        });
+        let center = SVector::<f64, 5>::from_fn(|r, _| r as f64 * 0.1 - 0.2);
+        let w = MerweParams::new(0.5, 2.0, 1.0).weights(7).unwrap();
+        let mut naive = center * center.transpose() * w.cov0;
+        for d in pairs.as_flattened() {
+            naive += d * d.transpose() * w.other;
+        }
+        let p = weighted_covariance(&center, &pairs, &w);
+        assert_relative_eq!(p, naive, epsilon = 1e-14);
+        assert_eq!(p, p.transpose());
+    }
+}

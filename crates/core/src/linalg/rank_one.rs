@@ -281,4 +281,35 @@ mod tests {
             );
         }
     }
+    #[test]
+    fn downdates_across_columns_equal_one_after_the_other_bit_for_bit() {
+        // A 7-state factor, three columns to remove (one with zeros, which
+        // both skip), small enough that every downdate succeeds.
+        let a =
+            nalgebra::SMatrix::<f64, 7, 7>::from_fn(|i, j| ((i * 3 + j * 5) as f64 * 0.7).sin());
+        let p = a * a.transpose() + nalgebra::SMatrix::identity() * 4.0;
+        let s0 = cholesky(&p).unwrap();
+        let mut u =
+            nalgebra::SMatrix::<f64, 7, 3>::from_fn(|i, j| ((i + 4 * j) as f64 * 0.9).cos() * 0.5);
+        u[(2, 1)] = 0.0;
+        u[(0, 2)] = 0.0;
+        let mut one_by_one = s0;
+        for j in 0..3 {
+            let mut col = u.column(j).into_owned();
+            downdate_in_place(&mut one_by_one, &mut col).unwrap();
+        }
+        let mut across = s0;
+        let mut work = u;
+        downdate_columns_in_place(&mut across, &mut work).unwrap();
+        assert_eq!(across, one_by_one);
+        assert_relative_eq!(
+            across * across.transpose(),
+            p - u * u.transpose(),
+            epsilon = 1e-12
+        );
+        // Too much to remove: refused (the caller then names the column).
+        let mut s = s0;
+        let mut big = u * 10.0;
+        assert_eq!(downdate_columns_in_place(&mut s, &mut big), Err(()));
+    }
 }
