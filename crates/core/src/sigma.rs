@@ -131,6 +131,18 @@ fn weighted_covariance<T: Real, const D: usize, const N: usize>(
     pairs: &Pairs<T, D, N>,
     w: &SigmaWeights<T>,
 ) -> SMatrix<T, D, D> {
+    let mut p = SMatrix::zeros();
+    weighted_covariance_into(&mut p, center, pairs, w);
+    p
+}
+
+/// [`weighted_covariance`] written into `p`.
+fn weighted_covariance_into<T: Real, const D: usize, const N: usize>(
+    p: &mut SMatrix<T, D, D>,
+    center: &SVector<T, D>,
+    pairs: &Pairs<T, D, N>,
+    w: &SigmaWeights<T>,
+) {
     // Gathered element by element, the weighted copies on the way (whole
     // column copies and matrix-times-scalar temporaries cost a `memcpy`
     // call each).
@@ -146,11 +158,9 @@ fn weighted_covariance<T: Real, const D: usize, const N: usize>(
             minus_w[(r, i)] = dm[r] * w.other;
         }
     }
-    let mut p = SMatrix::zeros();
-    add_products(&mut p, None, [&plus_w, &minus_w], [&plus, &minus], true);
-    add_weighted_outer_lower(&mut p, w.cov0, center);
-    mirror_lower(&mut p);
-    p
+    add_products(p, None, [&plus_w, &minus_w], [&plus, &minus], true);
+    add_weighted_outer_lower(p, w.cov0, center);
+    mirror_lower(p);
 }
 
 /// The unscented transform of the state through a process model.
@@ -163,9 +173,9 @@ pub(crate) struct PropagatedSigma<T: Real, const N: usize> {
 }
 
 impl<T: Real, const N: usize> PropagatedSigma<T, N> {
-    /// `Σ Wc dⱼ dⱼᵀ`.
-    pub fn covariance(&self, w: &SigmaWeights<T>) -> SMatrix<T, N, N> {
-        weighted_covariance(&self.center, &self.pairs, w)
+    /// `Σ Wc dⱼ dⱼᵀ`, written into `p`.
+    pub fn covariance_into(&self, p: &mut SMatrix<T, N, N>, w: &SigmaWeights<T>) {
+        weighted_covariance_into(p, &self.center, &self.pairs, w);
     }
 }
 

@@ -156,12 +156,6 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
         self.pending = false;
     }
 
-    /// Records a prediction: propagated part, process noise and fade.
-    pub fn predicted(&mut self, propagated: SMatrix<T, N, N>, q: SMatrix<T, N, N>, fade: T) {
-        *self.spare() = propagated;
-        self.predicted_spare(Some(&q), fade);
-    }
-
     /// Records a prediction whose propagated part is in the spare buffer,
     /// with process noise `q` (`None`: the same as the last prediction's)
     /// and fade `fade`.

@@ -143,17 +143,22 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Un
         space: &S,
     ) -> Result<(), FilterError> {
         let mut q = model.noise(x, dt);
-        check_noise_cached(&q, self.cov.noise(), Quantity::ProcessNoise)?;
-        mirror_lower(&mut q);
+        let changed = check_noise_cached(&q, self.cov.noise(), Quantity::ProcessNoise)?;
+        if changed {
+            mirror_lower(&mut q);
+        }
         let s = factor(&self.cov.prior(T::one()))?;
         let propagated = sigma::propagate(x, &s, &self.weights, model, dt, space)?;
-        let p = propagated.covariance(&self.weights);
-        ensure_finite(&p, Quantity::PropagatedCovariance)?;
+        // Into the spare buffer, current only once checked.
+        let p = self.cov.spare();
+        propagated.covariance_into(p, &self.weights);
+        ensure_finite(p, Quantity::PropagatedCovariance)?;
 
         let mut step = PriorStep::new(dt);
         adapter.after_predict(&mut step);
         *x = propagated.mean;
-        self.cov.predicted(p, q, step.fade_factor());
+        self.cov
+            .predicted_spare(changed.then_some(&q), step.fade_factor());
         Ok(())
     }
 }
