@@ -184,7 +184,7 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
     fn fold<const D: usize>(
         method: TimeUpdate,
         start: &mut SMatrix<T, D, D>,
-        pairs: &mut Pairs<T, D, N>,
+        pairs: &Pairs<T, D, N>,
         sqrt_w: T,
     ) {
         match method {
@@ -202,6 +202,7 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
                 add_columns_by_rows(start, &mut rows);
             }
             TimeUpdate::RankOne => {
+                let mut pairs = *pairs;
                 let cols = pairs.as_flattened_mut();
                 for c in cols.iter_mut() {
                     *c *= sqrt_w;
@@ -223,11 +224,10 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
     ) -> Result<SMatrix<T, M, M>, FilterError> {
         // R may be singular (a perfect measurement) as long as C is not.
         let mut sz = *sr;
-        let mut pairs = measured.pairs;
         Self::fold(
             self.time_update,
             &mut sz,
-            &mut pairs,
+            &measured.pairs,
             self.weights.other.sqrt(),
         );
         weighted_rank_one(&mut sz, &measured.center, self.weights.cov0)
@@ -306,7 +306,7 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Sq
         Self::fold(
             self.time_update,
             &mut factor,
-            &mut propagated.pairs,
+            &propagated.pairs,
             (self.weights.other * weight).sqrt(),
         );
         weighted_rank_one(&mut factor, &propagated.center, self.weights.cov0 * weight).map_err(
