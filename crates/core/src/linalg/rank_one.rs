@@ -117,34 +117,9 @@ pub(crate) fn downdate_in_place<T: Real, const N: usize>(
     v: &mut SVector<T, N>,
 ) -> Result<(), usize> {
     let s = s.as_mut_slice();
-    let v = v.as_mut_slice();
-    let eps = epsilon::<T>();
     for k in 0..N {
-        let b = v[k];
-        if b == T::zero() {
-            continue;
-        }
-        let a = s[k * N + k];
-        // (a − b)(a + b) keeps the difference accurate when |b| ≈ a.
-        let r2 = (a - b) * (a + b);
-        let positive = r2 > eps * a * a && r2.is_finite();
-        if !positive {
+        if !downdate_pivot(&mut s[k * N..k * N + N], v.as_mut_slice(), k) {
             return Err(k);
-        }
-        let r = r2.sqrt();
-        // Two divisions per pivot, not three: c = r / a, s = b / a through
-        // 1 / a, and 1 / c = a / r.
-        let inv_a = a.recip();
-        let c = r * inv_a;
-        let sn = b * inv_a;
-        let inv_c = a / r;
-        s[k * N + k] = r;
-        let col = &mut s[k * N + k + 1..k * N + N];
-        let rest = &mut v[k + 1..];
-        for (t, u) in col.iter_mut().zip(rest.iter_mut()) {
-            let tn = (*t - sn * *u) * inv_c;
-            *t = tn;
-            *u = c * *u - sn * tn;
         }
     }
     Ok(())
@@ -166,34 +141,46 @@ pub(crate) fn downdate_columns_in_place<T: Real, const N: usize, const M: usize>
 ) -> Result<(), ()> {
     let s = s.as_mut_slice();
     let u = u.as_mut_slice();
-    let eps = epsilon::<T>();
     for k in 0..N {
         for j in 0..M {
-            let v = &mut u[j * N..j * N + N];
-            let b = v[k];
-            if b == T::zero() {
-                continue;
-            }
-            let a = s[k * N + k];
-            let r2 = (a - b) * (a + b);
-            if !(r2 > eps * a * a && r2.is_finite()) {
+            if !downdate_pivot(&mut s[k * N..k * N + N], &mut u[j * N..j * N + N], k) {
                 return Err(());
-            }
-            let r = r2.sqrt();
-            let inv_a = a.recip();
-            let c = r * inv_a;
-            let sn = b * inv_a;
-            let inv_c = a / r;
-            s[k * N + k] = r;
-            let col = &mut s[k * N + k + 1..k * N + N];
-            for (t, w) in col.iter_mut().zip(v[k + 1..].iter_mut()) {
-                let tn = (*t - sn * *w) * inv_c;
-                *t = tn;
-                *w = c * *w - sn * tn;
             }
         }
     }
     Ok(())
+}
+
+/// Pivot `k` of a hyperbolic downdate: column `k` of the factor (`col`,
+/// all `N` rows) and the vector being removed (`v`). `false` when the
+/// pivot would not stay positive (or is not finite); nothing is then
+/// written.
+#[inline(always)]
+fn downdate_pivot<T: Real>(col: &mut [T], v: &mut [T], k: usize) -> bool {
+    let b = v[k];
+    if b == T::zero() {
+        return true;
+    }
+    let a = col[k];
+    // (a − b)(a + b) keeps the difference accurate when |b| ≈ a.
+    let r2 = (a - b) * (a + b);
+    if !(r2 > epsilon::<T>() * a * a && r2.is_finite()) {
+        return false;
+    }
+    let r = r2.sqrt();
+    // Two divisions per pivot, not three: c = r / a, s = b / a through
+    // 1 / a, and 1 / c = a / r.
+    let inv_a = a.recip();
+    let c = r * inv_a;
+    let sn = b * inv_a;
+    let inv_c = a / r;
+    col[k] = r;
+    for (t, u) in col[k + 1..].iter_mut().zip(v[k + 1..].iter_mut()) {
+        let tn = (*t - sn * *u) * inv_c;
+        *t = tn;
+        *u = c * *u - sn * tn;
+    }
+    true
 }
 
 #[cfg(test)]

@@ -20,7 +20,6 @@ use crate::Real;
 /// assert!((s * s.transpose() - Matrix2::new(2.0, 0.0, 0.0, 2.0)).norm() < 1e-14);
 /// ```
 pub fn add_columns<T: Real, const N: usize>(s: &mut SMatrix<T, N, N>, cols: &mut [SVector<T, N>]) {
-    let two = T::one() + T::one();
     let ss = s.as_mut_slice();
     let mut w = [T::zero(); N];
     for k in 0..N {
@@ -29,20 +28,10 @@ pub fn add_columns<T: Real, const N: usize>(s: &mut SMatrix<T, N, N>, cols: &mut
         for c in cols.iter() {
             sigma2 += c[k] * c[k];
         }
-        if sigma2 == T::zero() {
-            if alpha < T::zero() {
-                for v in &mut ss[k * N + k..k * N + N] {
-                    *v = -*v;
-                }
-            }
+        let Some((beta, v0, tau)) = reflector(alpha, sigma2) else {
+            flip_if_negative(&mut ss[k * N + k..k * N + N]);
             continue;
-        }
-        let norm = (alpha * alpha + sigma2).sqrt();
-        // Reflect (α, c_k) onto (β, 0) with β = −sign(α)·norm; v₀ = α − β
-        // has no cancellation.
-        let beta = if alpha >= T::zero() { -norm } else { norm };
-        let v0 = alpha - beta;
-        let tau = two / (v0 * v0 + sigma2);
+        };
         // w = v₀ S[k+1.., k] + Σ cᵢ[k] cᵢ[k+1..]
         let wk = &mut w[k + 1..N];
         for (wi, si) in wk.iter_mut().zip(&ss[k * N + k + 1..k * N + N]) {
@@ -72,14 +61,8 @@ pub fn add_columns<T: Real, const N: usize>(s: &mut SMatrix<T, N, N>, cols: &mut
                 cs[k] = T::zero();
             }
         }
-        // Make the diagonal positive: flipping a column of S is an
-        // orthogonal transformation from the right.
         ss[k * N + k] = beta;
-        if beta < T::zero() {
-            for v in &mut ss[k * N + k..k * N + N] {
-                *v = -*v;
-            }
-        }
+        flip_if_negative(&mut ss[k * N + k..k * N + N]);
     }
 }
 
@@ -93,26 +76,16 @@ pub(crate) fn add_columns_by_rows<T: Real, const D: usize, const N: usize>(
     s: &mut SMatrix<T, D, D>,
     rows: &mut [[[T; N]; 2]; D],
 ) {
-    let two = T::one() + T::one();
     let ss = s.as_mut_slice();
     for k in 0..D {
         let (head, tail) = rows.split_at_mut(k + 1);
         let rk = head[k].as_flattened();
         let alpha = ss[k * D + k];
         let sigma2 = dot(rk, rk);
-        if sigma2 == T::zero() {
-            if alpha < T::zero() {
-                for v in &mut ss[k * D + k..k * D + D] {
-                    *v = -*v;
-                }
-            }
+        let Some((beta, v0, tau)) = reflector(alpha, sigma2) else {
+            flip_if_negative(&mut ss[k * D + k..k * D + D]);
             continue;
-        }
-        let norm = (alpha * alpha + sigma2).sqrt();
-        // As in `add_columns`: β = −sign(α)·norm, v₀ = α − β.
-        let beta = if alpha >= T::zero() { -norm } else { norm };
-        let v0 = alpha - beta;
-        let tau = two / (v0 * v0 + sigma2);
+        };
         let below = &mut ss[k * D + k + 1..k * D + D];
         for (si, ri) in below.iter_mut().zip(tail.iter_mut()) {
             let ri = ri.as_flattened_mut();
@@ -123,10 +96,33 @@ pub(crate) fn add_columns_by_rows<T: Real, const D: usize, const N: usize>(
             }
         }
         ss[k * D + k] = beta;
-        if beta < T::zero() {
-            for v in &mut ss[k * D + k..k * D + D] {
-                *v = -*v;
-            }
+        flip_if_negative(&mut ss[k * D + k..k * D + D]);
+    }
+}
+
+/// The Householder reflection taking `(α, c)` with `‖c‖² = σ²` onto
+/// `(β, 0)`: `(β, v₀, τ)` with `β = −sign(α)·√(α² + σ²)`, `v₀ = α − β` (no
+/// cancellation) and `τ = 2 / (v₀² + σ²)`; `None` when `σ² = 0` (nothing to
+/// fold).
+#[inline(always)]
+fn reflector<T: Real>(alpha: T, sigma2: T) -> Option<(T, T, T)> {
+    if sigma2 == T::zero() {
+        return None;
+    }
+    let norm = (alpha * alpha + sigma2).sqrt();
+    let beta = if alpha >= T::zero() { -norm } else { norm };
+    let v0 = alpha - beta;
+    Some((beta, v0, (T::one() + T::one()) / (v0 * v0 + sigma2)))
+}
+
+/// Negates a factor's column (from the diagonal down) whose diagonal is
+/// negative: an orthogonal transformation from the right, so the factor
+/// keeps a non-negative diagonal.
+#[inline(always)]
+fn flip_if_negative<T: Real>(column: &mut [T]) {
+    if column[0] < T::zero() {
+        for v in column {
+            *v = -*v;
         }
     }
 }
