@@ -219,8 +219,9 @@ pub(crate) fn first_non_finite<T: crate::Real>(values: &[T]) -> Option<usize> {
 }
 
 /// Whether every element is finite, without an early exit so the check
-/// vectorises (inlined into [`ensure_finite`]): `0 · v` is `±0` for a finite `v` and NaN for `±∞` or NaN, and
-/// NaN survives any sum. Eight independent lanes keep the adds parallel.
+/// vectorises (inlined into [`ensure_finite`]): `0 · v` is `±0` for a
+/// finite `v` and NaN for `±∞` or NaN, and NaN survives any sum. Eight
+/// independent lanes keep the adds parallel.
 #[inline(always)]
 fn all_finite<T: crate::Real>(values: &[T]) -> bool {
     const LANES: usize = 8;

@@ -125,10 +125,9 @@ impl<T: Real, const N: usize, P: LinearizedProcess<T, N>> PredictForm<T, N, P>
         // Φ P Φᵀ into the spare buffer, current only once checked (no
         // copy either way). Two predictions in a row propagate the prior.
         let prior = self.cov.is_pending().then(|| self.cov.prior(T::one()));
-        self.cov.fill_spare(|current, spare| {
-            sandwich_into(&phi, prior.as_ref().unwrap_or(current), spare);
-            ensure_finite(spare, Quantity::PropagatedCovariance)
-        })?;
+        let (current, spare) = self.cov.current_and_spare();
+        sandwich_into(&phi, prior.as_ref().unwrap_or(current), spare);
+        ensure_finite(spare, Quantity::PropagatedCovariance)?;
 
         let mut step = PriorStep::new(dt);
         adapter.after_predict(&mut step);
@@ -239,7 +238,7 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         let known = (fade == T::one())
             .then(|| done.step.innovation_factor())
             .flatten();
-        let mut computed = SMatrix::zeros();
+        let mut computed = None;
         let factor = factor_of(&c, known, &mut computed)?;
         let gain = joseph_gain(
             self.cov.spare(),
@@ -293,11 +292,10 @@ impl<T: Real, const N: usize> CovarianceForm<T, N> {
         // returned by value that is not needed.
         let negated_k = negated_kalman_gain(&l, &hp);
         // Into the spare buffer, current only once everything is checked.
-        self.cov.fill_spare(|_, covariance| {
-            let b = hp.transpose();
-            joseph_factored_noise_negated(covariance, prior, &negated_k, &b, &hph, r_factor);
-            ensure_finite(covariance, Quantity::UpdatedCovariance)
-        })?;
+        let covariance = self.cov.spare();
+        let b = hp.transpose();
+        joseph_factored_noise_negated(covariance, prior, &negated_k, &b, &hph, r_factor);
+        ensure_finite(covariance, Quantity::UpdatedCovariance)?;
         let x_new = space.add(x, &-(negated_k * nu));
         ensure_finite(&x_new, Quantity::UpdatedState)?;
         *x = x_new;

@@ -41,16 +41,17 @@ pub(crate) fn negated_kalman_gain<T: Real, const N: usize, const M: usize>(
 }
 
 /// The gain `K = B C⁻¹` (two triangular solves on `Bᵀ`) and the expanded
-/// Joseph update of `prior` (into `covariance`), for the cross covariance `B = P⁻ Hᵀ` (or `P_xz`),
-/// given transposed, the predicted measurement covariance `predicted`
+/// Joseph update of `prior` (written into `covariance`), for the cross
+/// covariance `B = P⁻ Hᵀ` (or `P_xz`), given transposed, the predicted
+/// measurement covariance `predicted`
 /// (`H P⁻ Hᵀ` or `P_zz`), the noise `noise` (with its lower Cholesky factor
 /// `noise_factor` when the caller has it) and `c = predicted + noise`.
 /// `factor` is the lower Cholesky factor of `c` (see [`factor_of`]).
 ///
 /// `R` enters the covariance through its factor
-/// ([`joseph_factored_noise`](crate::linalg::joseph_factored_noise)): through `C`, the rounding of `K C Kᵀ` can
-/// make the posterior indefinite when `C` is badly conditioned (an
-/// estimated `R` in `f32`). An `R` without a semi-definite factor is not a
+/// ([`joseph_factored_noise`](crate::linalg::joseph_factored_noise)):
+/// through `C`, the rounding of `K C Kᵀ` can make the posterior indefinite
+/// when `C` is badly conditioned (an estimated `R` in `f32`). An `R` without a semi-definite factor is not a
 /// covariance; it keeps [`joseph_expanded`] with `C`.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
@@ -87,14 +88,11 @@ pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
 pub(crate) fn factor_of<'a, T: Real, const M: usize>(
     c: &SMatrix<T, M, M>,
     known: Option<&'a SMatrix<T, M, M>>,
-    computed: &'a mut SMatrix<T, M, M>,
+    computed: &'a mut Option<SMatrix<T, M, M>>,
 ) -> Result<&'a SMatrix<T, M, M>, FilterError> {
     match known {
         Some(l) => Ok(l),
-        None => {
-            *computed = cholesky(c).map_err(|e| not_pd(e.index))?;
-            Ok(computed)
-        }
+        None => Ok(computed.insert(cholesky(c).map_err(|e| not_pd(e.index))?)),
     }
 }
 

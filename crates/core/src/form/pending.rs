@@ -65,7 +65,7 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
     /// result computed from the current covariance.
     pub fn current_and_spare(&mut self) -> (&SMatrix<T, N, N>, &mut SMatrix<T, N, N>) {
         let [a, b] = &mut self.buffers;
-        if self.current == 0 {
+        if self.current & 1 == 0 {
             (a, b)
         } else {
             (b, a)
@@ -74,18 +74,8 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
 
     /// The spare buffer, to write the next covariance into.
     pub fn spare(&mut self) -> &mut SMatrix<T, N, N> {
+        // `& 1`: provably in bounds, so no check.
         &mut self.buffers[(self.current ^ 1) & 1]
-    }
-
-    /// Writes the next covariance into the spare buffer with `fill`, which
-    /// also gets the current one.
-    #[inline(always)]
-    pub fn fill_spare<R>(
-        &mut self,
-        fill: impl FnOnce(&SMatrix<T, N, N>, &mut SMatrix<T, N, N>) -> R,
-    ) -> R {
-        let (current, spare) = self.current_and_spare();
-        fill(current, spare)
     }
 
     /// The process noise of the last prediction (zero before the first):
@@ -218,11 +208,13 @@ mod tests {
         // A prediction from the spare buffer, with a new Q, then one that
         // keeps it.
         let q = Matrix2::new(0.1, 0.0, 0.0, 0.2);
-        cov.fill_spare(|current, spare| *spare = current * 2.0);
+        let (current, spare) = cov.current_and_spare();
+        *spare = current * 2.0;
         cov.predicted_spare(Some(&q), 1.0);
         assert!(cov.is_pending());
         assert_eq!(cov.prior(1.0), p0 * 2.0 + q);
-        cov.fill_spare(|current, spare| *spare = current * 3.0);
+        let (current, spare) = cov.current_and_spare();
+        *spare = current * 3.0;
         cov.predicted_spare(None, 1.0);
         assert_eq!(cov.prior(1.0), p0 * 6.0 + q);
         assert_eq!(cov.noise(), &q);

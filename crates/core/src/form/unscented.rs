@@ -220,7 +220,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         let known = (fade == T::one())
             .then(|| done.step.innovation_factor())
             .flatten();
-        let mut computed = SMatrix::zeros();
+        let mut computed = None;
         let factor = factor_of(&c, known, &mut computed)?;
         let gain = joseph_gain(
             self.cov.spare(),

@@ -192,12 +192,12 @@ pub fn joseph_factored_noise<T: Real, const N: usize, const M: usize>(
     out
 }
 
-/// [`joseph_factored_noise`] given `K̄ = −K`, written into `out`, which the forms compute in the
-/// pass that transposes the gain anyway. With `Ē = B + K̄ A = −E` (`A` is
-/// symmetric, so `K̄ A` is the product `K̄ Aᵀ` the kernel forms, on top of
-/// `B`), `P⁺ = P + Ē K̄ᵀ + K̄ Bᵀ + (K̄ L)(K̄ L)ᵀ`: the terms of
-/// `joseph_factored_noise` with exact sign changes, and no elementwise pass
-/// to negate `K` or subtract `B`.
+/// [`joseph_factored_noise`] written into `out` and given `K̄ = −K` (the
+/// forms compute `K̄` in the pass that transposes the gain anyway). With
+/// `Ē = B + K̄ A = −E` (`A` is symmetric, so `K̄ A` is the product `K̄ Aᵀ`
+/// the kernel forms, on top of `B`), `P⁺ = P + Ē K̄ᵀ + K̄ Bᵀ + (K̄ L)(K̄ L)ᵀ`:
+/// the terms of `joseph_factored_noise` with exact sign changes, and no
+/// elementwise pass to negate `K` or subtract `B`.
 #[inline]
 pub(crate) fn joseph_factored_noise_negated<T: Real, const N: usize, const M: usize>(
     out: &mut SMatrix<T, N, N>,
