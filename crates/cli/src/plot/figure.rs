@@ -7,10 +7,11 @@ use plotters::coord::ranged1d::{AsRangedCoord, Ranged, ValueFormatter};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::font::{ensure_font, FAMILY};
+use super::font::FAMILY;
 use super::legend::{draw_legend, LEFT};
 use super::palette::colour;
 use super::range::{linear_range, log_range, x_range, YRange};
+use super::save::{save_png_and_svg, Drawing};
 use super::thin::{split_at_gaps, thin};
 use super::ticks::{compact, linear_ticks};
 use crate::CliError;
@@ -79,16 +80,7 @@ impl Figure {
 
     /// Writes `<dir>/<stem>.png` and `<dir>/<stem>.svg`.
     pub(crate) fn save(&self, dir: &Path, stem: &str) -> Result<Vec<PathBuf>, CliError> {
-        ensure_font()?;
-        let size = (WIDTH, self.height());
-        let png = dir.join(format!("{stem}.png"));
-        let failed = |p: &Path, e: String| CliError::Failed(format!("{}: {e}", p.display()));
-        self.draw(BitMapBackend::new(&png, size).into_drawing_area())
-            .map_err(|e| failed(&png, e))?;
-        let svg = dir.join(format!("{stem}.svg"));
-        self.draw(SVGBackend::new(&svg, size).into_drawing_area())
-            .map_err(|e| failed(&svg, e))?;
-        Ok(vec![png, svg])
+        save_png_and_svg(self, dir, stem, (WIDTH, self.height()))
     }
 
     fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
@@ -152,6 +144,12 @@ impl Figure {
             Scale::Linear => c.draw(area, range.lo..range.hi),
             Scale::Log => c.draw(area, (range.lo..range.hi).log_scale()),
         }
+    }
+}
+
+impl Drawing for Figure {
+    fn draw_on<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
+        self.draw(root)
     }
 }
 

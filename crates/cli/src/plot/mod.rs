@@ -26,6 +26,7 @@ mod palette;
 mod panels;
 mod process_figures;
 mod range;
+mod save;
 mod sensitivity;
 mod thin;
 mod ticks;

@@ -8,8 +8,9 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::figure::WIDTH;
-use super::font::{ensure_font, FAMILY};
+use super::font::FAMILY;
 use super::palette::colour;
+use super::save::{save_png_and_svg, Drawing};
 use crate::reproduce::StudyRow;
 use crate::CliError;
 
@@ -35,24 +36,20 @@ pub fn sensitivity_figure(
     if rows.is_empty() {
         return Ok(Vec::new());
     }
-    ensure_font()?;
     let size = (WIDTH, FRAME + ROW * rows.len() as u32);
-    let failed = |p: &Path, e: String| CliError::Failed(format!("{}: {e}", p.display()));
-    let png = dir.join(format!("{stem}.png"));
-    draw(
-        BitMapBackend::new(&png, size).into_drawing_area(),
-        rows,
-        metric,
-    )
-    .map_err(|e| failed(&png, e))?;
-    let svg = dir.join(format!("{stem}.svg"));
-    draw(
-        SVGBackend::new(&svg, size).into_drawing_area(),
-        rows,
-        metric,
-    )
-    .map_err(|e| failed(&svg, e))?;
-    Ok(vec![png, svg])
+    save_png_and_svg(&Sensitivity { rows, metric }, dir, stem, size)
+}
+
+/// The figure of one metric over the study's rows.
+struct Sensitivity<'a> {
+    rows: &'a [StudyRow],
+    metric: usize,
+}
+
+impl Drawing for Sensitivity<'_> {
+    fn draw_on<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
+        draw(root, self.rows, self.metric)
+    }
 }
 
 fn draw<DB: DrawingBackend>(

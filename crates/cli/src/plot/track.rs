@@ -7,9 +7,10 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::figure::WIDTH;
-use super::font::{ensure_font, FAMILY};
+use super::font::FAMILY;
 use super::legend::draw_legend;
 use super::palette::colour;
+use super::save::{save_png_and_svg, Drawing};
 use super::ticks::linear_ticks;
 use crate::CliError;
 use kestrel_io::process::Track;
@@ -31,15 +32,7 @@ pub(crate) struct TrackFigure<'a> {
 impl TrackFigure<'_> {
     /// Writes `<dir>/<stem>.png` and `<dir>/<stem>.svg`.
     pub(crate) fn save(&self, dir: &Path, stem: &str) -> Result<Vec<PathBuf>, CliError> {
-        ensure_font()?;
-        let failed = |p: &Path, e: String| CliError::Failed(format!("{}: {e}", p.display()));
-        let png = dir.join(format!("{stem}.png"));
-        self.draw(BitMapBackend::new(&png, (WIDTH, HEIGHT)).into_drawing_area())
-            .map_err(|e| failed(&png, e))?;
-        let svg = dir.join(format!("{stem}.svg"));
-        self.draw(SVGBackend::new(&svg, (WIDTH, HEIGHT)).into_drawing_area())
-            .map_err(|e| failed(&svg, e))?;
-        Ok(vec![png, svg])
+        save_png_and_svg(self, dir, stem, (WIDTH, HEIGHT))
     }
 
     /// The legend entries and their line sets: forward, smoothed, fixes,
@@ -152,5 +145,11 @@ impl TrackFigure<'_> {
             }
         }
         root.present().map_err(e)
+    }
+}
+
+impl Drawing for TrackFigure<'_> {
+    fn draw_on<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
+        self.draw(root)
     }
 }
