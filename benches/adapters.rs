@@ -36,43 +36,15 @@ use kestrel::adaptive::{
     OutlierCompression, SageHusa, SageHusaFading, StrongTracking, WindowedNoise,
 };
 use kestrel::models::{LinearMeasurement, LinearProcess};
-use kestrel::nalgebra::{SMatrix, SVector};
+use kestrel::nalgebra::SVector;
 use kestrel::{Ekf, UpdateReport};
 
 use common::model::Model;
-use common::rng::SplitMix64;
+use common::simulate::{measurements, CYCLE};
 
 type Group<'a> = BenchmarkGroup<'a, WallTime>;
 
 const M: usize = 6;
-/// Length of the measurement cycle.
-const CYCLE: usize = 1024;
-
-/// A standard normal draw (Box–Muller on two uniforms in `(0, 1]`).
-fn normal(rng: &mut SplitMix64) -> f64 {
-    let u1 = 0.5 * (1.0 - rng.symmetric());
-    let u2 = 0.5 * (1.0 - rng.symmetric());
-    (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
-}
-
-fn gaussian<const D: usize>(rng: &mut SplitMix64, cov: &SMatrix<f64, D, D>) -> SVector<f64, D> {
-    let l = cov.cholesky().expect("SPD by construction").l();
-    l * SVector::<f64, D>::from_fn(|_, _| normal(rng))
-}
-
-/// `CYCLE` measurements of a truth simulated from the model, starting from
-/// `x0`.
-fn measurements<const N: usize>(m: &Model<f64, N, M>) -> Vec<SVector<f64, M>> {
-    let mut rng = SplitMix64::new(0x6164_6170_7465_7273 + N as u64);
-    let mut x = m.x0;
-    (0..CYCLE)
-        .map(|_| {
-            x = m.phi * x + gaussian(&mut rng, &m.q);
-            m.h * x + gaussian(&mut rng, &m.r)
-        })
-        .collect()
-}
-
 /// The per-epoch hook (sets the fuzzy gain's inputs; nothing for the rest).
 type Hook<A> = fn(&mut A);
 

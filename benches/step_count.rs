@@ -11,9 +11,12 @@
 //! The difference of the two totals ("Collected") divided by 2000 is the
 //! count per step. Filters: `kf`, `kf_diag`, `kf_improved` (paper 000's
 //! `ImprovedAdaptive`), `ukf`, `srukf`, `nalgebra`,
-//! `adskalman`, `kf_f32`, `ukf_f32`, `srukf_f32` (f32 at N = 15 only);
-//! sizes 2, 4, 6, 9, 12, 15, 18, 24, 32 with `M = min(N, 6)`. Without
-//! arguments (as `cargo bench` runs it) it prints this usage.
+//! `adskalman`, `kf_f32`, `ukf_f32`, `srukf_f32` (f32 at N = 15 only), and
+//! `kf_cycle`, `kf_improved_cycle`: the plain and the `ImprovedAdaptive` EKF
+//! fed the simulated measurement cycle of the `adapters` benchmark (so the
+//! adapter estimates, compresses and fades as it does there) instead of a
+//! constant `z`; sizes 2, 4, 6, 9, 12, 15, 18, 24, 32 with `M = min(N, 6)`.
+//! Without arguments (as `cargo bench` runs it) it prints this usage.
 
 mod common;
 
@@ -22,6 +25,7 @@ use std::hint::black_box;
 use common::adskalman_kf;
 use common::hand::HandKf;
 use common::model::Model;
+use common::simulate::measurements;
 use kestrel::form::{PredictForm, UpdateForm};
 use kestrel::models::{LinearMeasurement, LinearProcess};
 use kestrel::nalgebra::{Const, DimMin, SMatrix};
@@ -47,6 +51,35 @@ fn run<T, const N: usize, const M: usize, F>(
         f.predict(&process, T::one()).expect("predict");
         black_box(f.update(&measurement, black_box(&m.z)).expect("update"));
     }
+}
+
+/// `steps` predict + update steps of the plain or the `ImprovedAdaptive`
+/// EKF over the simulated measurement cycle.
+fn cycle_steps<const N: usize, const M: usize>(improved: bool, steps: usize) -> bool {
+    let m = Model::<f64, N, M>::generate(0x6b65_7374_7265_6c00 + N as u64);
+    let zs = measurements(&m);
+    let process = LinearProcess::new(m.phi, m.q);
+    let measurement = LinearMeasurement::new(m.h, m.r);
+    fn go<A: kestrel::adapter::NoiseAdapter<f64, M>, const N: usize, const M: usize>(
+        mut f: Filter<f64, N, kestrel::form::CovarianceForm<f64, N>, A>,
+        process: &LinearProcess<f64, N>,
+        measurement: &LinearMeasurement<f64, N, M>,
+        zs: &[kestrel::nalgebra::SVector<f64, M>],
+        steps: usize,
+    ) {
+        for z in zs.iter().cycle().take(steps) {
+            f.predict(process, 1.0).expect("predict");
+            black_box(f.update(measurement, black_box(z)).expect("update"));
+        }
+    }
+    let f = Ekf::new(m.x0, m.p0).unwrap();
+    if improved {
+        let adapter = kestrel::adaptive::ImprovedAdaptive::paper000().unwrap();
+        go(f.with_adapter(adapter), &process, &measurement, &zs, steps);
+    } else {
+        go(f, &process, &measurement, &zs, steps);
+    }
+    true
 }
 
 fn steps_of<T: Real, const N: usize, const M: usize>(filter: &str, steps: usize) -> bool
@@ -107,18 +140,33 @@ fn main() {
         eprintln!("usage: step_count FILTER N STEPS (see the source's header)");
         return;
     };
-    let known = match (filter.strip_suffix("_f32"), n) {
-        (Some(f), 15) => steps_of::<f32, 15, 6>(f, steps),
-        (Some(_), _) => false,
-        (None, 2) => steps_of::<f64, 2, 2>(filter, steps),
-        (None, 4) => steps_of::<f64, 4, 4>(filter, steps),
-        (None, 6) => steps_of::<f64, 6, 6>(filter, steps),
-        (None, 9) => steps_of::<f64, 9, 6>(filter, steps),
-        (None, 12) => steps_of::<f64, 12, 6>(filter, steps),
-        (None, 15) => steps_of::<f64, 15, 6>(filter, steps),
-        (None, 18) => steps_of::<f64, 18, 6>(filter, steps),
-        (None, 24) => steps_of::<f64, 24, 6>(filter, steps),
-        (None, 32) => steps_of::<f64, 32, 6>(filter, steps),
+    let cycle = match filter {
+        "kf_cycle" => Some(false),
+        "kf_improved_cycle" => Some(true),
+        _ => None,
+    };
+    let known = match (cycle, filter.strip_suffix("_f32"), n) {
+        (Some(improved), _, 2) => cycle_steps::<2, 2>(improved, steps),
+        (Some(improved), _, 4) => cycle_steps::<4, 4>(improved, steps),
+        (Some(improved), _, 6) => cycle_steps::<6, 6>(improved, steps),
+        (Some(improved), _, 9) => cycle_steps::<9, 6>(improved, steps),
+        (Some(improved), _, 12) => cycle_steps::<12, 6>(improved, steps),
+        (Some(improved), _, 15) => cycle_steps::<15, 6>(improved, steps),
+        (Some(improved), _, 18) => cycle_steps::<18, 6>(improved, steps),
+        (Some(improved), _, 24) => cycle_steps::<24, 6>(improved, steps),
+        (Some(improved), _, 32) => cycle_steps::<32, 6>(improved, steps),
+        (Some(_), _, _) => false,
+        (None, Some(f), 15) => steps_of::<f32, 15, 6>(f, steps),
+        (None, Some(_), _) => false,
+        (None, None, 2) => steps_of::<f64, 2, 2>(filter, steps),
+        (None, None, 4) => steps_of::<f64, 4, 4>(filter, steps),
+        (None, None, 6) => steps_of::<f64, 6, 6>(filter, steps),
+        (None, None, 9) => steps_of::<f64, 9, 6>(filter, steps),
+        (None, None, 12) => steps_of::<f64, 12, 6>(filter, steps),
+        (None, None, 15) => steps_of::<f64, 15, 6>(filter, steps),
+        (None, None, 18) => steps_of::<f64, 18, 6>(filter, steps),
+        (None, None, 24) => steps_of::<f64, 24, 6>(filter, steps),
+        (None, None, 32) => steps_of::<f64, 32, 6>(filter, steps),
         _ => false,
     };
     if !known {

@@ -6,3 +6,6 @@ pub mod adskalman_kf;
 pub mod hand;
 pub mod model;
 pub mod rng;
+// Only the benchmarks with adapters simulate measurements.
+#[allow(dead_code)]
+pub mod simulate;

@@ -2,17 +2,14 @@ use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
 use super::outcome::{
-    adapt_checked, adapt_checked_lazy, factor_of, joseph_gain, negated_kalman_gain, not_pd,
+    adapt_checked, adapt_checked_lazy, factor_of, joseph_gain, unadapted_joseph, unadapted_report,
 };
 use super::pending::PendingCovariance;
 use super::{sequential, FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::contract::{check_covariance, check_diagonal, check_noise_cached};
 use crate::error::ensure_finite;
-use crate::linalg::{
-    cholesky, joseph_factored_noise_negated, mirror_lower, sandwich_into, sandwich_transposed,
-    solve_lower,
-};
+use crate::linalg::{mirror_lower, sandwich_into, sandwich_transposed};
 use crate::{
     FilterError, LinearizedMeasurement, LinearizedProcess, Quantity, Real, StateSpace, UpdateReport,
 };
@@ -284,35 +281,13 @@ impl<T: Real, const N: usize> CovarianceForm<T, N> {
         let hp = h * prior;
         let hph = sandwich_transposed(&hp, h);
         let c = hph + r;
-        let l = cholesky(&c).map_err(|e| not_pd(e.index))?;
-        let mut white = nu;
-        solve_lower(&l, &mut white);
-        let nis = white.norm_squared();
-        // The steps of `joseph_gain` with the factors at hand, and nothing
-        // returned by value that is not needed.
-        let negated_k = negated_kalman_gain(&l, &hp);
         // Into the spare buffer, current only once everything is checked.
-        let covariance = self.cov.spare();
-        let b = hp.transpose();
-        joseph_factored_noise_negated(covariance, prior, &negated_k, &b, &hph, r_factor);
-        ensure_finite(covariance, Quantity::UpdatedCovariance)?;
-        let x_new = space.add(x, &-(negated_k * nu));
+        let (gain, nis) = unadapted_joseph(self.cov.spare(), prior, &hp, &hph, &c, r_factor, &nu)?;
+        let x_new = space.add(x, &gain.correction(&nu));
         ensure_finite(&x_new, Quantity::UpdatedState)?;
         *x = x_new;
         let fade = self.cov.total_fade(T::one());
         self.cov.commit_spare();
-        Ok(UpdateReport {
-            innovation: nu,
-            innovation_used: nu,
-            nominal_innovation_covariance: c,
-            innovation_covariance: c,
-            noise: r,
-            nis,
-            adapted_nis: nis,
-            fade,
-            rejected: false,
-            sequential: false,
-            adapters: R::default(),
-        })
+        Ok(unadapted_report(nu, c, r, nis, fade))
     }
 }

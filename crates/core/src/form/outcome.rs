@@ -7,7 +7,7 @@ use crate::adapter::{GainStep, NoiseAdapter};
 use crate::error::ensure_finite;
 use crate::linalg::{
     cholesky, cholesky_semidefinite, joseph_expanded, joseph_factored_noise_negated, solve_lower,
-    solve_lower_transpose,
+    solve_lower_transpose, Ldl,
 };
 use crate::{FilterError, Quantity, Real, UpdateReport};
 
@@ -78,6 +78,62 @@ pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
     }
     ensure_finite(covariance, Quantity::UpdatedCovariance)?;
     Ok(Gain { negated_k })
+}
+
+/// The gain and covariance of an update without adapters, for the cross
+/// covariance `B = P⁻ Hᵀ` (or `P_xz`), given transposed, the predicted
+/// measurement covariance `predicted`, `c = predicted + R` and the lower
+/// Cholesky factor of `R`: writes the Joseph update of `prior` into
+/// `covariance` and returns the gain with `νᵀ C⁻¹ ν`.
+///
+/// No adapter reads a factor of `C` here, so `C` is factored without square
+/// roots ([`Ldl`]): on the chain from one covariance to the next they
+/// would set the pace at small sizes. Equal to [`joseph_gain`] with a
+/// Cholesky factor to rounding.
+#[inline]
+pub(crate) fn unadapted_joseph<T: Real, const N: usize, const M: usize>(
+    covariance: &mut SMatrix<T, N, N>,
+    prior: &SMatrix<T, N, N>,
+    cross_t: &SMatrix<T, M, N>,
+    predicted: &SMatrix<T, M, M>,
+    c: &SMatrix<T, M, M>,
+    noise_factor: &SMatrix<T, M, M>,
+    innovation: &SVector<T, M>,
+) -> Result<(Gain<T, N, M>, T), FilterError> {
+    let ldl = Ldl::new(c).map_err(|e| not_pd(e.index))?;
+    let nis = ldl.quadratic_form(innovation);
+    let mut kt = *cross_t;
+    ldl.solve_in_place(&mut kt);
+    let negated_k = SMatrix::from_fn(|i, j| -kt[(j, i)]);
+    let b = cross_t.transpose();
+    joseph_factored_noise_negated(covariance, prior, &negated_k, &b, predicted, noise_factor);
+    ensure_finite(covariance, Quantity::UpdatedCovariance)?;
+    Ok((Gain { negated_k }, nis))
+}
+
+/// The report of an update without adapters: nothing adapted, so the
+/// innovation and its covariance are the nominal ones.
+#[inline(always)]
+pub(crate) fn unadapted_report<T: Real, const M: usize, R: Default>(
+    innovation: SVector<T, M>,
+    c: SMatrix<T, M, M>,
+    noise: SMatrix<T, M, M>,
+    nis: T,
+    fade: T,
+) -> UpdateReport<T, M, R> {
+    UpdateReport {
+        innovation,
+        innovation_used: innovation,
+        nominal_innovation_covariance: c,
+        innovation_covariance: c,
+        noise,
+        nis,
+        adapted_nis: nis,
+        fade,
+        rejected: false,
+        sequential: false,
+        adapters: R::default(),
+    }
 }
 
 /// The lower Cholesky factor of `c`: `known` when the caller has it (the

@@ -7,6 +7,7 @@
 //! `P = S Sᵀ`.
 
 mod cholesky;
+mod ldl;
 mod product;
 mod rank_one;
 mod symmetric;
@@ -22,6 +23,7 @@ pub use symmetric::{
 pub use triangular::{solve_lower, solve_lower_transpose};
 pub use triangularize::add_columns;
 
+pub(crate) use ldl::Ldl;
 pub(crate) use product::add_products;
 pub(crate) use rank_one::{downdate_columns_in_place, downdate_in_place, update_in_place};
 pub(crate) use symmetric::{joseph_factored_noise_negated, sandwich_into};

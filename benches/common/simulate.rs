@@ -1,0 +1,35 @@
+//! Measurements simulated from a benchmark model, so that adapters take the
+//! branches they take on a consistent filter at their natural rates.
+
+use kestrel::nalgebra::{SMatrix, SVector};
+
+use super::model::Model;
+use super::rng::SplitMix64;
+
+/// Length of the measurement cycle.
+pub const CYCLE: usize = 1024;
+
+/// A standard normal draw (Box–Muller on two uniforms in `(0, 1]`).
+fn normal(rng: &mut SplitMix64) -> f64 {
+    let u1 = 0.5 * (1.0 - rng.symmetric());
+    let u2 = 0.5 * (1.0 - rng.symmetric());
+    (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+}
+
+fn gaussian<const D: usize>(rng: &mut SplitMix64, cov: &SMatrix<f64, D, D>) -> SVector<f64, D> {
+    let l = cov.cholesky().expect("SPD by construction").l();
+    l * SVector::<f64, D>::from_fn(|_, _| normal(rng))
+}
+
+/// `CYCLE` measurements of a truth simulated from `m` (Gaussian process and
+/// measurement noise), starting from its `x0`; seeded by `N`.
+pub fn measurements<const N: usize, const M: usize>(m: &Model<f64, N, M>) -> Vec<SVector<f64, M>> {
+    let mut rng = SplitMix64::new(0x6164_6170_7465_7273 + N as u64);
+    let mut x = m.x0;
+    (0..CYCLE)
+        .map(|_| {
+            x = m.phi * x + gaussian(&mut rng, &m.q);
+            m.h * x + gaussian(&mut rng, &m.r)
+        })
+        .collect()
+}

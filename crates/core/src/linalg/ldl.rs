@@ -1,0 +1,160 @@
+use nalgebra::{SMatrix, SVector};
+
+use super::NotPositiveDefinite;
+use crate::real::{epsilon, lit};
+use crate::Real;
+
+/// The square-root-free factorisation `A = L D Lᵀ` of a symmetric positive
+/// definite matrix (`L` unit lower triangular, `D` diagonal), for solving
+/// with `A` where no Cholesky factor is needed afterwards.
+///
+/// It accepts exactly the matrices [`cholesky`](super::cholesky) accepts
+/// (the pivots `dₖ` are the squares of the Cholesky pivots and pass the
+/// same test, with the same index on failure), but a pivot costs one
+/// division instead of a square root and a division. In a Kalman update the
+/// factorisation of `C` lies on the chain from one covariance to the next,
+/// so at small sizes the square roots set the pace.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Ldl<T: Real, const M: usize> {
+    /// `L` below the diagonal (the diagonal and above are not read).
+    l: SMatrix<T, M, M>,
+    /// `1 / dₖ`.
+    inv_d: [T; M],
+}
+
+impl<T: Real, const M: usize> Ldl<T, M> {
+    /// Factors `a`, reading its lower triangle.
+    #[inline]
+    pub fn new(a: &SMatrix<T, M, M>) -> Result<Self, NotPositiveDefinite> {
+        let rel = epsilon::<T>() * lit::<T>(M as f64);
+        // Left-looking: column j receives −l_ik (l_jk d_k) for each finished
+        // column k, then is divided by its pivot.
+        let mut l = *a;
+        let mut d = [T::zero(); M];
+        let mut inv_d = [T::zero(); M];
+        let s = l.as_mut_slice();
+        for j in 0..M {
+            let (done, rest) = s.split_at_mut(j * M);
+            let col = &mut rest[j..M];
+            for k in 0..j {
+                let ujk = done[k * M + j] * d[k];
+                for (v, &lik) in col.iter_mut().zip(&done[k * M + j..k * M + M]) {
+                    *v -= lik * ujk;
+                }
+            }
+            let pivot = col[0];
+            if !(pivot.is_finite() && pivot > rel * a[(j, j)].abs() && pivot > T::zero()) {
+                return Err(NotPositiveDefinite { index: j });
+            }
+            d[j] = pivot;
+            inv_d[j] = pivot.recip();
+            for v in &mut col[1..] {
+                *v *= inv_d[j];
+            }
+        }
+        Ok(Self { l, inv_d })
+    }
+
+    /// `B ← A⁻¹ B`: `L⁻¹`, `D⁻¹`, `L⁻ᵀ`, column by column.
+    #[inline]
+    pub fn solve_in_place<const K: usize>(&self, b: &mut SMatrix<T, M, K>) {
+        let ls = self.l.as_slice();
+        for c in 0..K {
+            let col = &mut b.as_mut_slice()[c * M..c * M + M];
+            for k in 0..M {
+                let xk = col[k];
+                for (bi, li) in col[k + 1..].iter_mut().zip(&ls[k * M + k + 1..k * M + M]) {
+                    *bi -= *li * xk;
+                }
+            }
+            for (v, inv) in col.iter_mut().zip(&self.inv_d) {
+                *v *= *inv;
+            }
+            for k in (0..M).rev() {
+                let mut acc = col[k];
+                for (xi, li) in col[k + 1..].iter().zip(&ls[k * M + k + 1..k * M + M]) {
+                    acc -= *li * *xi;
+                }
+                col[k] = acc;
+            }
+        }
+    }
+
+    /// `vᵀ A⁻¹ v` (`Σ yₖ² / dₖ` for `y = L⁻¹ v`).
+    #[inline]
+    pub fn quadratic_form(&self, v: &SVector<T, M>) -> T {
+        let ls = self.l.as_slice();
+        let mut y = *v;
+        let mut total = T::zero();
+        for k in 0..M {
+            let yk = y[k];
+            for (bi, li) in y.as_mut_slice()[k + 1..]
+                .iter_mut()
+                .zip(&ls[k * M + k + 1..k * M + M])
+            {
+                *bi -= *li * yk;
+            }
+            total += yk * yk * self.inv_d[k];
+        }
+        total
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::linalg::{cholesky, solve_lower, solve_lower_transpose};
+    use approx::assert_relative_eq;
+    use nalgebra::{Matrix3, Matrix3x2, Vector3};
+
+    #[test]
+    fn a_hand_computed_3x3() {
+        // A = L D Lᵀ with L = [[1,0,0],[0.5,1,0],[-1,2,1]], D = diag(4, 2, 3).
+        let l = Matrix3::new(1.0, 0.0, 0.0, 0.5, 1.0, 0.0, -1.0, 2.0, 1.0);
+        let d = Matrix3::from_diagonal(&Vector3::new(4.0, 2.0, 3.0));
+        let a = l * d * l.transpose();
+        let f = Ldl::new(&a).unwrap();
+        assert_relative_eq!(f.inv_d[0], 0.25, epsilon = 1e-15);
+        assert_relative_eq!(f.inv_d[1], 0.5, epsilon = 1e-15);
+        assert_relative_eq!(f.inv_d[2], 1.0 / 3.0, epsilon = 1e-15);
+        for (i, j) in [(1, 0), (2, 0), (2, 1)] {
+            assert_relative_eq!(f.l[(i, j)], l[(i, j)], epsilon = 1e-15);
+        }
+        let b = Matrix3x2::new(1.0, 2.0, 3.0, 4.0, 5.0, 6.0);
+        let mut x = b;
+        f.solve_in_place(&mut x);
+        assert_relative_eq!(a * x, b, epsilon = 1e-12);
+        let v = Vector3::new(1.0, -2.0, 0.5);
+        let direct = v.dot(&(a.try_inverse().unwrap() * v));
+        assert_relative_eq!(f.quadratic_form(&v), direct, epsilon = 1e-13);
+    }
+
+    #[test]
+    fn equals_the_cholesky_solves_to_rounding() {
+        let a = Matrix3::new(4.0, 1.0, -0.5, 1.0, 3.0, 0.25, -0.5, 0.25, 2.0);
+        let l = cholesky(&a).unwrap();
+        let b = Matrix3x2::new(1.0, -2.0, 0.5, 3.0, -1.0, 4.0);
+        let mut by_cholesky = b;
+        solve_lower(&l, &mut by_cholesky);
+        solve_lower_transpose(&l, &mut by_cholesky);
+        let mut by_ldl = b;
+        Ldl::new(&a).unwrap().solve_in_place(&mut by_ldl);
+        assert_relative_eq!(by_ldl, by_cholesky, epsilon = 1e-15, max_relative = 1e-14);
+    }
+
+    #[test]
+    fn refuses_what_cholesky_refuses_with_the_same_index() {
+        let cases = [
+            Matrix3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, -1.0),
+            Matrix3::new(1.0, 2.0, 0.0, 2.0, 1.0, 0.0, 0.0, 0.0, 1.0),
+            Matrix3::new(1.0, 0.0, 0.0, 0.0, f64::NAN, 0.0, 0.0, 0.0, 1.0),
+            Matrix3::new(0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
+            // Singular to working precision: rank one.
+            Matrix3::new(1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0),
+        ];
+        for a in cases {
+            let expected = cholesky(&a).unwrap_err();
+            assert_eq!(Ldl::new(&a).unwrap_err(), expected, "{a}");
+        }
+    }
+}
