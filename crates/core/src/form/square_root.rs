@@ -1,7 +1,7 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
-use super::outcome::{adapt, not_pd};
+use super::outcome::{adapt, not_pd, unadapted_report};
 use super::unscented::effective_jacobian;
 use super::{FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
@@ -358,6 +358,18 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         let nu = model.residual(z, &measured.z_hat);
         ensure_finite(&nu, Quantity::Measurement)?;
 
+        if A::IS_IDENTITY {
+            // Nothing to adapt: the adapter round left out (equal to it to
+            // rounding, as a test checks).
+            let (s_new, x_new) = Self::downdated(&prior, &measured.cross, &sz, &nu, x, space)?;
+            let mut white = nu;
+            solve_lower(&sz, &mut white);
+            *x = x_new;
+            let total_fade = self.predict_fade * if self.pending { self.fade } else { T::one() };
+            self.commit(s_new);
+            return Ok(unadapted_report(nu, c, r, white.norm_squared(), total_fade));
+        }
+
         let split = A::NEEDS_SPLIT.then(|| {
             match (self.pending, effective_jacobian(&prior, &measured.cross)) {
                 (true, Some(h)) => {
@@ -399,28 +411,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         };
         let mut c = sz * sz.transpose();
         mirror_lower(&mut c);
-
-        // Kᵀ = S_z⁻ᵀ S_z⁻¹ P_xzᵀ.
-        let mut kt = measured.cross.transpose();
-        solve_lower(&sz, &mut kt);
-        solve_lower_transpose(&sz, &mut kt);
-        let k = kt.transpose();
-        let x_new = space.add(x, &(k * nu_used));
-        ensure_finite(&x_new, Quantity::UpdatedState)?;
-        let u = k * sz;
-        let mut s_new = prior;
-        let mut work = u;
-        if downdate_columns_in_place(&mut s_new, &mut work).is_err() {
-            // Which column and pivot failed, as the downdates one after
-            // the other report it (the same arithmetic, so they fail too).
-            s_new = prior;
-            for j in 0..M {
-                let mut col = u.column(j).into_owned();
-                downdate_in_place(&mut s_new, &mut col)
-                    .map_err(|index| FilterError::DowndateFailed { column: j, index })?;
-            }
-        }
-        ensure_finite(&s_new, Quantity::UpdatedCovariance)?;
+        let (s_new, x_new) = Self::downdated(&prior, &measured.cross, &sz, &nu_used, x, space)?;
 
         *x = x_new;
         let total_fade = self.predict_fade * if self.pending { self.fade * fade } else { fade };
@@ -432,5 +423,42 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         );
         let adapted_nis = done.adapted_nis(&sz);
         Ok(done.accepted(nu, c, adapted_nis, total_fade))
+    }
+}
+
+impl<T: Real, const N: usize> SquareRootForm<T, N> {
+    /// The measurement update of the factor `prior` and of the state `x`
+    /// (not written): `K = P_xz S_z⁻ᵀ S_z⁻¹`, `x⁺ = x ⊞ K ν` and `S⁺` from
+    /// `S` downdated by the columns of `K S_z`, each checked.
+    fn downdated<const M: usize, S: StateSpace<T, N>>(
+        prior: &SMatrix<T, N, N>,
+        cross: &SMatrix<T, N, M>,
+        sz: &SMatrix<T, M, M>,
+        nu_used: &SVector<T, M>,
+        x: &SVector<T, N>,
+        space: &S,
+    ) -> Result<(SMatrix<T, N, N>, SVector<T, N>), FilterError> {
+        // Kᵀ = S_z⁻ᵀ S_z⁻¹ P_xzᵀ.
+        let mut kt = cross.transpose();
+        solve_lower(sz, &mut kt);
+        solve_lower_transpose(sz, &mut kt);
+        let k = kt.transpose();
+        let x_new = space.add(x, &(k * nu_used));
+        ensure_finite(&x_new, Quantity::UpdatedState)?;
+        let u = k * sz;
+        let mut s_new = *prior;
+        let mut work = u;
+        if downdate_columns_in_place(&mut s_new, &mut work).is_err() {
+            // Which column and pivot failed, as the downdates one after
+            // the other report it (the same arithmetic, so they fail too).
+            s_new = *prior;
+            for j in 0..M {
+                let mut col = u.column(j).into_owned();
+                downdate_in_place(&mut s_new, &mut col)
+                    .map_err(|index| FilterError::DowndateFailed { column: j, index })?;
+            }
+        }
+        ensure_finite(&s_new, Quantity::UpdatedCovariance)?;
+        Ok((s_new, x_new))
     }
 }
