@@ -7,7 +7,9 @@ use super::{FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::contract::{check_covariance, check_noise_cached};
 use crate::error::ensure_finite;
-use crate::linalg::{cholesky_semidefinite, mirror_lower, solve_lower, solve_lower_transpose};
+use crate::linalg::{
+    cholesky_semidefinite_in_place, mirror_lower, solve_lower, solve_lower_transpose,
+};
 use crate::sigma::{self, MerweParams, SigmaWeights};
 use crate::{
     FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace, UpdateReport,
@@ -101,7 +103,14 @@ impl<T: Real, const N: usize> UnscentedForm<T, N> {
 }
 
 fn factor<T: Real, const N: usize>(p: &SMatrix<T, N, N>) -> Result<SMatrix<T, N, N>, FilterError> {
-    cholesky_semidefinite(p).map_err(|e| FilterError::NotPositiveDefinite {
+    let mut s = *p;
+    factor_in_place(&mut s)?;
+    Ok(s)
+}
+
+/// Overwrites the covariance `p` with its factor (no copies in or out).
+fn factor_in_place<T: Real, const N: usize>(p: &mut SMatrix<T, N, N>) -> Result<(), FilterError> {
+    cholesky_semidefinite_in_place(p).map_err(|e| FilterError::NotPositiveDefinite {
         what: Quantity::StateCovariance,
         index: e.index,
     })
@@ -147,7 +156,8 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Un
         if changed {
             mirror_lower(&mut q);
         }
-        let s = factor(&self.cov.prior(T::one()))?;
+        let mut s = self.cov.prior(T::one());
+        factor_in_place(&mut s)?;
         let propagated = sigma::propagate(x, &s, &self.weights, model, dt, space)?;
         // Into the spare buffer, current only once checked.
         let p = self.cov.spare();

@@ -38,13 +38,15 @@ pub fn cholesky<T: Real, const N: usize>(
     a: &SMatrix<T, N, N>,
 ) -> Result<SMatrix<T, N, N>, NotPositiveDefinite> {
     let rel = epsilon::<T>() * lit::<T>(N as f64);
-    factor(a, |k, d, original, _column| {
+    let mut l = *a;
+    factor(&mut l, |k, d, original, _column| {
         if d.is_finite() && d > rel * original.abs() && d > T::zero() {
             Ok(Some(d.sqrt()))
         } else {
             Err(NotPositiveDefinite { index: k })
         }
-    })
+    })?;
+    Ok(l)
 }
 
 /// Lower Cholesky factor of a symmetric positive **semi**-definite matrix,
@@ -69,6 +71,17 @@ pub fn cholesky<T: Real, const N: usize>(
 pub fn cholesky_semidefinite<T: Real, const N: usize>(
     a: &SMatrix<T, N, N>,
 ) -> Result<SMatrix<T, N, N>, NotPositiveDefinite> {
+    let mut l = *a;
+    cholesky_semidefinite_in_place(&mut l)?;
+    Ok(l)
+}
+
+/// [`cholesky_semidefinite`] overwriting `a` with its factor (no copy of
+/// `N × N` values in or out); on error `a` holds a partial factor.
+#[inline]
+pub(crate) fn cholesky_semidefinite_in_place<T: Real, const N: usize>(
+    a: &mut SMatrix<T, N, N>,
+) -> Result<(), NotPositiveDefinite> {
     let mut scale = T::zero();
     for i in 0..N {
         scale = scale.max(a[(i, i)].abs());
@@ -101,13 +114,14 @@ const UNROLL_FROM: usize = 10;
 /// contiguous, bounds-check-free loop that vectorises, in the order of the
 /// textbook right-looking update (`a_ij − l_i0 l_j0 − l_i1 l_j1 − …`, the same
 /// rounding). `pivot(k, d, a_kk, column_below)` then turns the Schur pivot
-/// `d` into the diagonal (`None` = zero column) or an error.
+/// `d` into the diagonal (`None` = zero column) or an error. In place: `l`
+/// holds the matrix on entry and its factor on success.
 #[inline(always)]
 fn factor<T: Real, const N: usize>(
-    a: &SMatrix<T, N, N>,
+    l: &mut SMatrix<T, N, N>,
     mut pivot: impl FnMut(usize, T, T, &[T]) -> Result<Option<T>, NotPositiveDefinite>,
-) -> Result<SMatrix<T, N, N>, NotPositiveDefinite> {
-    let mut l = *a;
+) -> Result<(), NotPositiveDefinite> {
+    let original: [T; N] = core::array::from_fn(|j| l[(j, j)]);
     let s = l.as_mut_slice();
     for j in 0..N {
         let (done, rest) = s.split_at_mut(j * N);
@@ -147,7 +161,7 @@ fn factor<T: Real, const N: usize>(
             }
         }
         let (diag, below) = col.split_at_mut(1);
-        match pivot(j, diag[0], a[(j, j)], below)? {
+        match pivot(j, diag[0], original[j], below)? {
             Some(root) => {
                 let inv = root.recip();
                 diag[0] = root;
@@ -167,7 +181,7 @@ fn factor<T: Real, const N: usize>(
             *v = T::zero();
         }
     }
-    Ok(l)
+    Ok(())
 }
 
 #[cfg(test)]

@@ -23,6 +23,7 @@ pub use symmetric::{
 pub use triangular::{solve_lower, solve_lower_transpose};
 pub use triangularize::add_columns;
 
+pub(crate) use cholesky::cholesky_semidefinite_in_place;
 pub(crate) use ldl::Ldl;
 pub(crate) use product::add_products;
 pub(crate) use rank_one::{downdate_columns_in_place, downdate_in_place, update_in_place};
