@@ -174,7 +174,11 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
 
     fn commit(&mut self, s: SMatrix<T, N, N>) {
         self.s = s;
-        self.sq = SMatrix::zeros();
+        // `sq` is only read while a prediction is pending, and is zero
+        // otherwise: cleared only if it was set (not `N × N` stores a step).
+        if self.pending {
+            self.sq = SMatrix::zeros();
+        }
         self.fade = T::one();
         self.predict_fade = T::one();
         self.pending = false;
@@ -281,11 +285,18 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Sq
         adapter: &mut A,
         space: &S,
     ) -> Result<(), FilterError> {
-        let s = self.prior_factor(T::one());
         let mut q = model.noise(x, dt);
         let sq = self.process_noise.check(&q, Quantity::ProcessNoise)?;
         mirror_lower(&mut q);
-        let mut propagated = sigma::propagate(x, &s, &self.weights, model, dt, space)?;
+        // Borrowed unless a prediction is pending (no copy of `S`).
+        let merged;
+        let s = if self.pending {
+            merged = self.prior_factor(T::one());
+            &merged
+        } else {
+            &self.s
+        };
+        let mut propagated = sigma::propagate(x, s, &self.weights, model, dt, space)?;
 
         let mut step = PriorStep::new(dt);
         adapter.after_predict(&mut step);
@@ -350,8 +361,15 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         mirror_lower(&mut r);
         let w = self.weights;
 
-        let prior = self.prior_factor(T::one());
-        let measured = sigma::measure(x, &prior, &w, model, space)?;
+        // Borrowed unless a prediction is pending (no copy of `S`).
+        let merged;
+        let prior = if self.pending {
+            merged = self.prior_factor(T::one());
+            &merged
+        } else {
+            &self.s
+        };
+        let measured = sigma::measure(x, prior, &w, model, space)?;
         let sz = self.innovation_factor(&measured, &sr)?;
         let mut c = sz * sz.transpose();
         mirror_lower(&mut c);
@@ -361,7 +379,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         if A::IS_IDENTITY {
             // Nothing to adapt: the adapter round left out (equal to it to
             // rounding, as a test checks).
-            let (s_new, x_new) = Self::downdated(&prior, &measured.cross, &sz, &nu, x, space)?;
+            let (s_new, x_new) = Self::downdated(prior, &measured.cross, &sz, &nu, x, space)?;
             let mut white = nu;
             solve_lower(&sz, &mut white);
             *x = x_new;
@@ -370,6 +388,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             return Ok(unadapted_report(nu, c, r, white.norm_squared(), total_fade));
         }
 
+        let prior = *prior;
         let split = A::NEEDS_SPLIT.then(|| {
             match (self.pending, effective_jacobian(&prior, &measured.cross)) {
                 (true, Some(h)) => {

@@ -77,22 +77,34 @@ pub(crate) fn add_columns_by_rows<T: Real, const D: usize, const N: usize>(
     rows: &mut [[[T; N]; 2]; D],
 ) {
     let ss = s.as_mut_slice();
+    // ‖row k‖², computed while row k is updated at step k − 1 (it is the
+    // next pivot's input, so computing it then shortens the chain from one
+    // reflection to the next).
+    let mut sigma2 = rows
+        .first()
+        .map_or(T::zero(), |r| dot(r.as_flattened(), r.as_flattened()));
     for k in 0..D {
         let (head, tail) = rows.split_at_mut(k + 1);
         let rk = head[k].as_flattened();
         let alpha = ss[k * D + k];
-        let sigma2 = dot(rk, rk);
         let Some((beta, v0, tau)) = reflector(alpha, sigma2) else {
             flip_if_negative(&mut ss[k * D + k..k * D + D]);
+            sigma2 = tail
+                .first()
+                .map_or(T::zero(), |r| dot(r.as_flattened(), r.as_flattened()));
             continue;
         };
         let below = &mut ss[k * D + k + 1..k * D + D];
-        for (si, ri) in below.iter_mut().zip(tail.iter_mut()) {
+        for (i, (si, ri)) in below.iter_mut().zip(tail.iter_mut()).enumerate() {
             let ri = ri.as_flattened_mut();
             let wi = (*si * v0 + dot(ri, rk)) * tau;
             *si -= wi * v0;
-            for (c, &f) in ri.iter_mut().zip(rk) {
-                *c -= wi * f;
+            if i == 0 {
+                sigma2 = axpy_norm2(ri, rk, wi);
+            } else {
+                for (c, &f) in ri.iter_mut().zip(rk) {
+                    *c -= wi * f;
+                }
             }
         }
         ss[k * D + k] = beta;
@@ -128,6 +140,27 @@ fn flip_if_negative<T: Real>(column: &mut [T]) {
 }
 
 /// `Σ aᵢ bᵢ` in four independent lanes (so it vectorises).
+/// `a ← a − w b`, returning `‖a‖²` of the result (summed in the lanes of
+/// [`dot`]).
+#[inline(always)]
+fn axpy_norm2<T: Real>(a: &mut [T], b: &[T], w: T) -> T {
+    let mut lanes = [T::zero(); 4];
+    let (a4, a_rest) = a.as_chunks_mut::<4>();
+    let (b4, b_rest) = b.as_chunks::<4>();
+    for (x, y) in a4.iter_mut().zip(b4) {
+        for l in 0..4 {
+            x[l] -= w * y[l];
+            lanes[l] += x[l] * x[l];
+        }
+    }
+    let mut sum = (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]);
+    for (x, y) in a_rest.iter_mut().zip(b_rest) {
+        *x -= w * *y;
+        sum += *x * *x;
+    }
+    sum
+}
+
 #[inline(always)]
 fn dot<T: Real>(a: &[T], b: &[T]) -> T {
     let mut lanes = [T::zero(); 4];
