@@ -250,6 +250,60 @@ impl LinearizedMeasurement<f64, 2, 1> for NanJacobian {
     }
 }
 
+/// A finite prediction `x − (shift, 0)` with the Jacobian `h` and a dense
+/// `R` (so the covariance form takes its batch update, where `H` is checked
+/// through the outputs).
+struct BadJacobian {
+    h: Matrix2<f64>,
+    shift: f64,
+}
+impl MeasurementModel<f64, 2, 2> for BadJacobian {
+    fn predict(&self, x: &Vector2<f64>) -> Vector2<f64> {
+        Vector2::new(x[0] - self.shift, x[1])
+    }
+    fn noise(&self) -> Matrix2<f64> {
+        Matrix2::new(1.0, 0.25, 0.25, 1.0)
+    }
+}
+impl LinearizedMeasurement<f64, 2, 2> for BadJacobian {
+    fn jacobian(&self, _x: &Vector2<f64>) -> Matrix2<f64> {
+        self.h
+    }
+}
+
+/// The covariances the deferred checks are tried from: positive definite,
+/// and semi-definite with a zero variance (where `∞ · 0` gives NaN rather
+/// than `∞`).
+fn deferred_priors() -> [Matrix2<f64>; 2] {
+    [p0(), Matrix2::new(4.0, 0.0, 0.0, 0.0)]
+}
+
+const NON_FINITE: [f64; 3] = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
+
+#[test]
+fn a_non_finite_jacobian_is_named_in_the_batch_update_too() {
+    for p in deferred_priors() {
+        for (i, j) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+            for bad in NON_FINITE {
+                let mut h = Matrix2::new(1.0, 0.5, -0.5, 2.0);
+                h[(i, j)] = bad;
+                let sensor = BadJacobian { h, shift: 0.0 };
+                let want = non_finite_at(Quantity::MeasurementJacobian, i, j);
+                let name = format!("P = {p}, H[{i}, {j}] = {bad}");
+                let mut f = Ekf::new(X0, p).unwrap();
+                update_fails(&name, &mut f, &sensor, &Vector2::new(1.0, 0.5), want);
+                // After a prediction (the pending covariance) as well.
+                f.predict(&cv(), 1.0).unwrap();
+                update_fails(&name, &mut f, &sensor, &Vector2::new(1.0, 0.5), want);
+                // An innovation that overflows as well (`ν₀ = MAX + MAX`):
+                // the Jacobian is named first, as it is checked first.
+                let sensor = BadJacobian { h, shift: f64::MAX };
+                update_fails(&name, &mut f, &sensor, &Vector2::new(f64::MAX, 0.5), want);
+            }
+        }
+    }
+}
+
 /// `h(x) = √x₀`: finite at the estimate, NaN at a sigma point left of 0.
 struct SqrtSensor;
 impl MeasurementModel<f64, 2, 1> for SqrtSensor {
@@ -338,6 +392,64 @@ fn non_finite_propagation() {
         let want = non_finite(Quantity::PropagatedState, 0);
         predict_fails(name, &mut f, &SqrtProcess, want);
     });
+}
+
+/// A non-finite transition entry and, optionally, a NaN propagation.
+struct BadTransition {
+    phi: Matrix2<f64>,
+    nan_state: bool,
+}
+impl ProcessModel<f64, 2> for BadTransition {
+    fn propagate(&self, x: &Vector2<f64>, _dt: f64) -> Vector2<f64> {
+        if self.nan_state {
+            Vector2::new(f64::NAN, x[1])
+        } else {
+            *x
+        }
+    }
+    fn noise(&self, _x: &Vector2<f64>, _dt: f64) -> Matrix2<f64> {
+        Matrix2::identity()
+    }
+}
+impl LinearizedProcess<f64, 2> for BadTransition {
+    fn transition(&self, _x: &Vector2<f64>, _dt: f64) -> Matrix2<f64> {
+        self.phi
+    }
+}
+
+#[test]
+fn an_overflowing_innovation_is_named_in_the_batch_update() {
+    let sensor = BadJacobian {
+        h: Matrix2::identity(),
+        shift: f64::MAX,
+    };
+    let want = non_finite(Quantity::Measurement, 0);
+    let mut f = Ekf::new(X0, p0()).unwrap();
+    update_fails("ekf", &mut f, &sensor, &Vector2::new(f64::MAX, 0.5), want);
+}
+
+#[test]
+fn a_non_finite_transition_is_named_though_only_the_outputs_are_checked() {
+    for p in deferred_priors() {
+        for (i, j) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+            for bad in NON_FINITE {
+                for nan_state in [false, true] {
+                    let mut phi = Matrix2::new(1.0, 1.0, 0.0, 1.0);
+                    phi[(i, j)] = bad;
+                    let process = BadTransition { phi, nan_state };
+                    // The transition is named even when the propagated
+                    // state is bad too: it was checked first.
+                    let want = non_finite_at(Quantity::Transition, i, j);
+                    let name = format!("P = {p}, Φ[{i}, {j}] = {bad}, NaN x: {nan_state}");
+                    let mut f = Ekf::new(X0, p).unwrap();
+                    predict_fails(&name, &mut f, &process, want);
+                    // With a prediction pending.
+                    f.predict(&cv(), 1.0).unwrap();
+                    predict_fails(&name, &mut f, &process, want);
+                }
+            }
+        }
+    }
 }
 
 #[test]

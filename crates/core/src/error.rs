@@ -264,6 +264,25 @@ pub(crate) fn ensure_finite<T: crate::Real, const R: usize, const C: usize>(
     }
 }
 
+/// Whether every element of `m` is finite: the inlined test of
+/// [`ensure_finite`], for a form that checks only its outputs and, when one
+/// is not finite, runs its full sequence of checks out of line to name the
+/// first quantity that is not (see [`diagnose`]).
+#[inline(always)]
+pub(crate) fn is_finite<T: crate::Real, const R: usize, const C: usize>(
+    m: &SMatrix<T, R, C>,
+) -> bool {
+    all_finite(m.as_slice())
+}
+
+/// Runs `checks` out of line: the diagnosis of a failed output check, off
+/// the path of a passing step.
+#[cold]
+#[inline(never)]
+pub(crate) fn diagnose<R>(checks: impl FnOnce() -> R) -> R {
+    checks()
+}
+
 /// The error of [`ensure_finite`] for an `m` that has a non-finite element.
 #[cold]
 #[inline(never)]

@@ -8,7 +8,7 @@ use super::pending::PendingCovariance;
 use super::{sequential, FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::contract::{check_covariance, check_diagonal, check_noise_cached};
-use crate::error::ensure_finite;
+use crate::error::{diagnose, ensure_finite, is_finite};
 use crate::linalg::{mirror_lower, sandwich_into, sandwich_transposed};
 use crate::{
     FilterError, LinearizedMeasurement, LinearizedProcess, Quantity, Real, StateSpace, UpdateReport,
@@ -116,15 +116,24 @@ impl<T: Real, const N: usize, P: LinearizedProcess<T, N>> PredictForm<T, N, P>
             mirror_lower(&mut q);
         }
         let phi = model.transition(x, dt);
-        ensure_finite(&phi, Quantity::Transition)?;
         let x_new = model.propagate(x, dt);
-        ensure_finite(&x_new, Quantity::PropagatedState)?;
         // Φ P Φᵀ into the spare buffer, current only once checked (no
         // copy either way). Two predictions in a row propagate the prior.
         let prior = self.cov.is_pending().then(|| self.cov.prior(T::one()));
         let (current, spare) = self.cov.current_and_spare();
         sandwich_into(&phi, prior.as_ref().unwrap_or(current), spare);
-        ensure_finite(spare, Quantity::PropagatedCovariance)?;
+        // Only the outputs are checked on the way: a non-finite `Φ` makes
+        // the diagonal of `Φ P Φᵀ` non-finite (`Φᵢⱼ² Pⱼⱼ`, or `∞ · 0`), so
+        // if both pass, `Φ` is finite. If one fails, the checks run in
+        // order to name the first quantity that is not finite.
+        if !(is_finite(&x_new) && is_finite(spare)) {
+            let spare = &*spare;
+            diagnose(|| {
+                ensure_finite(&phi, Quantity::Transition)?;
+                ensure_finite(&x_new, Quantity::PropagatedState)?;
+                ensure_finite(spare, Quantity::PropagatedCovariance)
+            })?;
+        }
 
         let mut step = PriorStep::new(dt);
         adapter.after_predict(&mut step);
@@ -162,9 +171,18 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         let z_hat = model.predict(x);
         ensure_finite(&z_hat, Quantity::PredictedMeasurement)?;
         let h = model.jacobian(x);
-        ensure_finite(&h, Quantity::MeasurementJacobian)?;
+        // Without adapters `H` is checked through the outputs: a
+        // non-finite `Hᵢⱼ` makes `(H P Hᵀ)ᵢᵢ` non-finite (`Hᵢⱼ² Pⱼⱼ`, or
+        // `∞ · 0`), which no factorisation of `C` passes. If the update
+        // fails, `H` is checked first, as it would have been here.
+        let jacobian = || ensure_finite(&h, Quantity::MeasurementJacobian);
+        let unadapted = A::IS_IDENTITY && !diagonal;
+        if !unadapted {
+            jacobian()?;
+        }
         let nu = model.residual(z, &z_hat);
-        ensure_finite(&nu, Quantity::Measurement)?;
+        let nu_check = |e| diagnose(|| jacobian().and(Err(e)));
+        ensure_finite(&nu, Quantity::Measurement).or_else(nu_check)?;
         let prior = self.cov.prior(T::one());
 
         if diagonal {
@@ -192,7 +210,9 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         // Without an adapter R is dense here (a diagonal one went the
         // sequential way), so its factor is at hand.
         if let (true, Some(r_factor)) = (A::IS_IDENTITY, r_factor.as_ref()) {
-            return self.update_unadapted(x, nu, r, r_factor, &h, &prior, space);
+            return self
+                .update_unadapted(x, nu, r, r_factor, &h, &prior, space)
+                .or_else(|e| diagnose(|| jacobian().and(Err(e))));
         }
 
         // H P⁻ (= (P⁻ Hᵀ)ᵀ) and H P⁻ Hᵀ, one triangle. A fading adapter's

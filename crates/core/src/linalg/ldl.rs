@@ -27,6 +27,9 @@ impl<T: Real, const M: usize> Ldl<T, M> {
     #[inline]
     pub fn new(a: &SMatrix<T, M, M>) -> Result<Self, NotPositiveDefinite> {
         let rel = epsilon::<T>() * lit::<T>(M as f64);
+        if M == 2 {
+            return Self::two_by_two(a, rel);
+        }
         // Left-looking: column j receives −l_ik (l_jk d_k) for each finished
         // column k, then is divided by its pivot.
         let mut l = *a;
@@ -52,6 +55,32 @@ impl<T: Real, const M: usize> Ldl<T, M> {
                 *v *= inv_d[j];
             }
         }
+        Ok(Self { l, inv_d })
+    }
+
+    /// `M = 2` from the leading minors: `d₂ = det A / a₁₁`, so
+    /// `1/d₂ = a₁₁ / det A` is a division that does not wait for `1/d₁`
+    /// (two divisions side by side instead of one after the other: at two
+    /// measurements they are most of the chain). The same pivots, tests and
+    /// indices as the general loop, to rounding.
+    #[inline(always)]
+    fn two_by_two(a: &SMatrix<T, M, M>, rel: T) -> Result<Self, NotPositiveDefinite> {
+        let (a11, a21, a22) = (a[(0, 0)], a[(1, 0)], a[(1, 1)]);
+        let det = a11 * a22 - a21 * a21;
+        let inv_d1 = a11.recip();
+        let inv_d2 = a11 / det;
+        let d2 = det * inv_d1;
+        if !(a11.is_finite() && a11 > rel * a11.abs() && a11 > T::zero()) {
+            return Err(NotPositiveDefinite { index: 0 });
+        }
+        if !(d2.is_finite() && d2 > rel * a22.abs() && d2 > T::zero()) {
+            return Err(NotPositiveDefinite { index: 1 });
+        }
+        let mut l = SMatrix::zeros();
+        l[(1, 0)] = a21 * inv_d1;
+        let mut inv_d = [T::zero(); M];
+        inv_d[0] = inv_d1;
+        inv_d[1] = inv_d2;
         Ok(Self { l, inv_d })
     }
 
@@ -105,7 +134,7 @@ mod tests {
     use super::*;
     use crate::linalg::{cholesky, solve_lower, solve_lower_transpose};
     use approx::assert_relative_eq;
-    use nalgebra::{Matrix3, Matrix3x2, Vector3};
+    use nalgebra::{Matrix2, Matrix3, Matrix3x2, Vector2, Vector3};
 
     #[test]
     fn a_hand_computed_3x3() {
@@ -127,6 +156,44 @@ mod tests {
         let v = Vector3::new(1.0, -2.0, 0.5);
         let direct = v.dot(&(a.try_inverse().unwrap() * v));
         assert_relative_eq!(f.quadratic_form(&v), direct, epsilon = 1e-13);
+    }
+
+    #[test]
+    fn two_by_two_from_the_minors() {
+        // [[4, 2], [2, 5]] = L D Lᵀ with l₂₁ = ½, D = diag(4, 4).
+        let a = Matrix2::new(4.0, 2.0, 2.0, 5.0);
+        let f = Ldl::new(&a).unwrap();
+        assert_eq!((f.l[(1, 0)], f.inv_d), (0.5, [0.25, 0.25]));
+        let mut x = Vector2::new(8.0, 9.0);
+        f.solve_in_place(&mut x);
+        assert_relative_eq!(x, Vector2::new(1.375, 1.25), epsilon = 1e-15);
+        assert_relative_eq!(
+            f.quadratic_form(&Vector2::new(8.0, 9.0)),
+            22.25,
+            epsilon = 1e-13
+        );
+        let l = cholesky(&a).unwrap();
+        let mut by_cholesky = Vector2::new(-3.0, 0.7);
+        solve_lower(&l, &mut by_cholesky);
+        solve_lower_transpose(&l, &mut by_cholesky);
+        let mut by_ldl = Vector2::new(-3.0, 0.7);
+        f.solve_in_place(&mut by_ldl);
+        assert_relative_eq!(by_ldl, by_cholesky, epsilon = 1e-15, max_relative = 1e-14);
+        for bad in [
+            Matrix2::new(1.0, 2.0, 2.0, 1.0),
+            Matrix2::new(-1.0, 0.0, 0.0, 1.0),
+            Matrix2::new(0.0, 0.0, 0.0, 1.0),
+            Matrix2::new(1.0, 1.0, 1.0, 1.0),
+            Matrix2::new(1.0, f64::NAN, f64::NAN, 1.0),
+            Matrix2::new(f64::INFINITY, 0.0, 0.0, 1.0),
+            Matrix2::new(1.0, 0.0, 0.0, f64::NAN),
+        ] {
+            assert_eq!(
+                Ldl::new(&bad).unwrap_err(),
+                cholesky(&bad).unwrap_err(),
+                "{bad}"
+            );
+        }
     }
 
     #[test]
