@@ -172,6 +172,19 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
         s
     }
 
+    /// The factor of the covariance: `S` itself, borrowed (no copy), unless
+    /// a prediction is pending; then the merged factor, kept in `merged`.
+    fn current_factor<'a>(
+        &'a self,
+        merged: &'a mut Option<SMatrix<T, N, N>>,
+    ) -> &'a SMatrix<T, N, N> {
+        if self.pending {
+            merged.insert(self.prior_factor(T::one()))
+        } else {
+            &self.s
+        }
+    }
+
     fn commit(&mut self, s: SMatrix<T, N, N>) {
         self.s = s;
         // `sq` is only read while a prediction is pending, and is zero
@@ -288,14 +301,8 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Sq
         let mut q = model.noise(x, dt);
         let sq = self.process_noise.check(&q, Quantity::ProcessNoise)?;
         mirror_lower(&mut q);
-        // Borrowed unless a prediction is pending (no copy of `S`).
-        let merged;
-        let s = if self.pending {
-            merged = self.prior_factor(T::one());
-            &merged
-        } else {
-            &self.s
-        };
+        let mut merged = None;
+        let s = self.current_factor(&mut merged);
         let mut propagated = sigma::propagate(x, s, &self.weights, model, dt, space)?;
 
         let mut step = PriorStep::new(dt);
@@ -361,14 +368,8 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         mirror_lower(&mut r);
         let w = self.weights;
 
-        // Borrowed unless a prediction is pending (no copy of `S`).
-        let merged;
-        let prior = if self.pending {
-            merged = self.prior_factor(T::one());
-            &merged
-        } else {
-            &self.s
-        };
+        let mut merged = None;
+        let prior = self.current_factor(&mut merged);
         let measured = sigma::measure(x, prior, &w, model, space)?;
         let sz = self.innovation_factor(&measured, &sr)?;
         let mut c = sz * sz.transpose();
