@@ -8,10 +8,11 @@ use crate::Real;
 /// definite matrix (`L` unit lower triangular, `D` diagonal), for solving
 /// with `A` where no Cholesky factor is needed afterwards.
 ///
-/// It accepts exactly the matrices [`cholesky`](super::cholesky) accepts
-/// (the pivots `dₖ` are the squares of the Cholesky pivots and pass the
-/// same test, with the same index on failure), but a pivot costs one
-/// division instead of a square root and a division. In a Kalman update the
+/// It accepts the matrices [`cholesky`](super::cholesky) accepts: the
+/// pivots `dₖ` are, up to rounding, the squares of the Cholesky pivots and
+/// pass the same test, with the same index on failure (a matrix singular
+/// to within that rounding may fall either way). A pivot costs one division
+/// instead of a square root and a division. In a Kalman update the
 /// factorisation of `C` lies on the chain from one covariance to the next,
 /// so at small sizes the square roots set the pace.
 #[derive(Debug, Clone, Copy)]
