@@ -1,9 +1,7 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
-use super::outcome::{
-    adapt_checked, adapt_checked_lazy, factor_of, joseph_gain, unadapted_joseph, unadapted_report,
-};
+use super::outcome::{adapt_checked, adapt_checked_lazy, factor_of, joseph_gain, unadapted_update};
 use super::pending::PendingCovariance;
 use super::{sequential, FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
@@ -209,9 +207,14 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
 
         // Without an adapter R is dense here (a diagonal one went the
         // sequential way), so its factor is at hand.
+        // The update then leaves out every adapter step (nothing to adapt,
+        // nothing to copy into a `GainStep`); equal to the general path to
+        // rounding, as a test checks.
         if let (true, Some(r_factor)) = (A::IS_IDENTITY, r_factor.as_ref()) {
-            return self
-                .update_unadapted(x, nu, r, r_factor, &h, &prior, space)
+            let hp = h * prior;
+            let hph = sandwich_transposed(&hp, &h);
+            let noise = (r, r_factor);
+            return unadapted_update(&mut self.cov, x, space, &prior, &hp, &hph, noise, nu)
                 .or_else(|e| diagnose(|| jacobian().and(Err(e))));
         }
 
@@ -279,35 +282,5 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         );
         let adapted_nis = done.adapted_nis(factor);
         Ok(done.accepted(nu, c, adapted_nis, total_fade))
-    }
-}
-
-impl<T: Real, const N: usize> CovarianceForm<T, N> {
-    /// The batch update without an adapter: the general path with every
-    /// adapter step left out (nothing to adapt, nothing to copy into a
-    /// [`GainStep`](crate::adapter::GainStep)); equal to it to rounding, as
-    /// a test checks.
-    #[allow(clippy::too_many_arguments)]
-    fn update_unadapted<const M: usize, R: Default, S: StateSpace<T, N>>(
-        &mut self,
-        x: &mut SVector<T, N>,
-        nu: SVector<T, M>,
-        r: SMatrix<T, M, M>,
-        r_factor: &SMatrix<T, M, M>,
-        h: &SMatrix<T, M, N>,
-        prior: &SMatrix<T, N, N>,
-        space: &S,
-    ) -> Result<UpdateReport<T, M, R>, FilterError> {
-        let hp = h * prior;
-        let hph = sandwich_transposed(&hp, h);
-        let c = hph + r;
-        // Into the spare buffer, current only once everything is checked.
-        let (gain, nis) = unadapted_joseph(self.cov.spare(), prior, &hp, &hph, &c, r_factor, &nu)?;
-        let x_new = space.add(x, &gain.correction(&nu));
-        ensure_finite(&x_new, Quantity::UpdatedState)?;
-        *x = x_new;
-        let fade = self.cov.total_fade(T::one());
-        self.cov.commit_spare();
-        Ok(unadapted_report(nu, c, r, nis, fade))
     }
 }

@@ -3,13 +3,14 @@
 
 use nalgebra::{SMatrix, SVector};
 
+use super::pending::PendingCovariance;
 use crate::adapter::{GainStep, NoiseAdapter};
 use crate::error::ensure_finite;
 use crate::linalg::{
     cholesky, cholesky_semidefinite, joseph_expanded, joseph_factored_noise_negated, solve_lower,
     solve_lower_transpose, Ldl,
 };
-use crate::{FilterError, Quantity, Real, UpdateReport};
+use crate::{FilterError, Quantity, Real, StateSpace, UpdateReport};
 
 /// The gain of a Kalman update (its covariance is written into the
 /// caller's buffer).
@@ -65,6 +66,31 @@ pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
     factor: &SMatrix<T, M, M>,
 ) -> Result<Gain<T, N, M>, FilterError> {
     let negated_k = negated_kalman_gain(factor, cross_t);
+    joseph_with_gain(
+        covariance,
+        prior,
+        negated_k,
+        cross_t,
+        predicted,
+        noise,
+        noise_factor,
+        c,
+    )
+}
+
+/// The Joseph update of [`joseph_gain`] for a gain `−K` already formed.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn joseph_with_gain<T: Real, const N: usize, const M: usize>(
+    covariance: &mut SMatrix<T, N, N>,
+    prior: &SMatrix<T, N, N>,
+    negated_k: SMatrix<T, N, M>,
+    cross_t: &SMatrix<T, M, N>,
+    predicted: &SMatrix<T, M, M>,
+    noise: &SMatrix<T, M, M>,
+    noise_factor: Option<&SMatrix<T, M, M>>,
+    c: &SMatrix<T, M, M>,
+) -> Result<Gain<T, N, M>, FilterError> {
     let b = cross_t.transpose();
     match noise_factor {
         Some(l) => joseph_factored_noise_negated(covariance, prior, &negated_k, &b, predicted, l),
@@ -80,35 +106,56 @@ pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
     Ok(Gain { negated_k })
 }
 
-/// The gain and covariance of an update without adapters, for the cross
-/// covariance `B = P⁻ Hᵀ` (or `P_xz`), given transposed, the predicted
-/// measurement covariance `predicted`, `c = predicted + R` and the lower
-/// Cholesky factor of `R`: writes the Joseph update of `prior` into
-/// `covariance` and returns the gain with `νᵀ C⁻¹ ν`.
+/// The update without adapters, for the cross covariance `B = P⁻ Hᵀ` (or
+/// `P_xz`), given transposed, the predicted measurement covariance
+/// `predicted` (`H P⁻ Hᵀ` or `P_zz`), `R` with its lower Cholesky factor
+/// and the innovation: the Joseph update of `prior` into the spare buffer
+/// of `cov`, made current once it and the updated `x` are checked, and the
+/// report (nothing adapted).
 ///
 /// No adapter reads a factor of `C` here, so `C` is factored without square
 /// roots ([`Ldl`]): on the chain from one covariance to the next they
 /// would set the pace at small sizes. Equal to [`joseph_gain`] with a
 /// Cholesky factor to rounding.
+#[allow(clippy::too_many_arguments)]
 #[inline]
-pub(crate) fn unadapted_joseph<T: Real, const N: usize, const M: usize>(
-    covariance: &mut SMatrix<T, N, N>,
+pub(crate) fn unadapted_update<T, const N: usize, const M: usize, R: Default, S>(
+    cov: &mut PendingCovariance<T, N>,
+    x: &mut SVector<T, N>,
+    space: &S,
     prior: &SMatrix<T, N, N>,
     cross_t: &SMatrix<T, M, N>,
     predicted: &SMatrix<T, M, M>,
-    c: &SMatrix<T, M, M>,
-    noise_factor: &SMatrix<T, M, M>,
-    innovation: &SVector<T, M>,
-) -> Result<(Gain<T, N, M>, T), FilterError> {
-    let ldl = Ldl::new(c).map_err(|e| not_pd(e.index))?;
-    let nis = ldl.quadratic_form(innovation);
+    (noise, noise_factor): (SMatrix<T, M, M>, &SMatrix<T, M, M>),
+    innovation: SVector<T, M>,
+) -> Result<UpdateReport<T, M, R>, FilterError>
+where
+    T: Real,
+    S: StateSpace<T, N>,
+{
+    let c = predicted + noise;
+    let ldl = Ldl::new(&c).map_err(|e| not_pd(e.index))?;
+    let nis = ldl.quadratic_form(&innovation);
     let mut kt = *cross_t;
     ldl.solve_in_place(&mut kt);
     let negated_k = SMatrix::from_fn(|i, j| -kt[(j, i)]);
-    let b = cross_t.transpose();
-    joseph_factored_noise_negated(covariance, prior, &negated_k, &b, predicted, noise_factor);
-    ensure_finite(covariance, Quantity::UpdatedCovariance)?;
-    Ok((Gain { negated_k }, nis))
+    let spare = cov.spare();
+    let gain = joseph_with_gain(
+        spare,
+        prior,
+        negated_k,
+        cross_t,
+        predicted,
+        &noise,
+        Some(noise_factor),
+        &c,
+    )?;
+    let x_new = space.add(x, &gain.correction(&innovation));
+    ensure_finite(&x_new, Quantity::UpdatedState)?;
+    *x = x_new;
+    let fade = cov.total_fade(T::one());
+    cov.commit_spare();
+    Ok(unadapted_report(innovation, c, noise, nis, fade))
 }
 
 /// The report of an update without adapters: nothing adapted, so the

@@ -1,7 +1,7 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
-use super::outcome::{adapt_checked, factor_of, joseph_gain, unadapted_joseph, unadapted_report};
+use super::outcome::{adapt_checked, factor_of, joseph_gain, unadapted_update};
 use super::pending::PendingCovariance;
 use super::{FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
@@ -200,16 +200,9 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         if A::IS_IDENTITY {
             // Nothing to adapt: the adapter round left out (equal to it to
             // rounding, as a test checks).
-            let c = pzz + r;
             let cross_t = measured.cross.transpose();
-            let spare = self.cov.spare();
-            let (gain, nis) = unadapted_joseph(spare, &prior, &cross_t, &pzz, &c, &r_factor, &nu)?;
-            let x_new = space.add(x, &gain.correction(&nu));
-            ensure_finite(&x_new, Quantity::UpdatedState)?;
-            *x = x_new;
-            let fade = self.cov.total_fade(T::one());
-            self.cov.commit_spare();
-            return Ok(unadapted_report(nu, c, r, nis, fade));
+            let noise = (r, &r_factor);
+            return unadapted_update(&mut self.cov, x, space, &prior, &cross_t, &pzz, noise, nu);
         }
 
         let split = A::NEEDS_SPLIT.then(|| {
