@@ -143,22 +143,20 @@ fn weighted_covariance_into<T: Real, const D: usize, const N: usize>(
     pairs: &Pairs<T, D, N>,
     w: &SigmaWeights<T>,
 ) {
-    // Gathered element by element, the weighted copies on the way (whole
-    // column copies and matrix-times-scalar temporaries cost a `memcpy`
-    // call each).
-    let mut plus = SMatrix::<T, D, N>::zeros();
-    let mut minus = SMatrix::<T, D, N>::zeros();
-    let mut plus_w = SMatrix::<T, D, N>::zeros();
-    let mut minus_w = SMatrix::<T, D, N>::zeros();
-    for (i, [dp, dm]) in pairs.iter().enumerate() {
-        for r in 0..D {
-            plus[(r, i)] = dp[r];
-            minus[(r, i)] = dm[r];
-            plus_w[(r, i)] = dp[r] * w.other;
-            minus_w[(r, i)] = dm[r] * w.other;
+    // The pairs are `2N` contiguous columns: the product reads them in
+    // place, against one weighted copy (whole-vector arithmetic would go
+    // through a `memcpy` per temporary).
+    let mut weighted: Pairs<T, D, N> = [[SVector::zeros(); 2]; N];
+    for (wv, d) in weighted
+        .as_flattened_mut()
+        .iter_mut()
+        .zip(pairs.as_flattened())
+    {
+        for (a, &b) in wv.iter_mut().zip(d.as_slice()) {
+            *a = b * w.other;
         }
     }
-    add_products(p, None, [&plus_w, &minus_w], [&plus, &minus], true);
+    add_products(p, None, [&weighted], [pairs], true);
     add_weighted_outer_lower(p, w.cov0, center);
     mirror_lower(p);
 }

@@ -1,5 +1,6 @@
 //! Linear time-invariant models given directly by their matrices.
 
+use kestrel_core::linalg::mul_vector;
 use kestrel_core::nalgebra::{SMatrix, SVector};
 use kestrel_core::{
     LinearizedMeasurement, LinearizedProcess, MeasurementModel, ProcessModel, Real,
@@ -31,7 +32,7 @@ impl<T: Real, const N: usize> LinearProcess<T, N> {
 
 impl<T: Real, const N: usize> ProcessModel<T, N> for LinearProcess<T, N> {
     fn propagate(&self, x: &SVector<T, N>, _dt: T) -> SVector<T, N> {
-        self.transition * x
+        mul_vector(&self.transition, x)
     }
     fn noise(&self, _x: &SVector<T, N>, _dt: T) -> SMatrix<T, N, N> {
         self.noise
@@ -71,7 +72,7 @@ impl<T: Real, const N: usize, const M: usize> MeasurementModel<T, N, M>
     for LinearMeasurement<T, N, M>
 {
     fn predict(&self, x: &SVector<T, N>) -> SVector<T, M> {
-        self.matrix * x
+        mul_vector(&self.matrix, x)
     }
     fn noise(&self) -> SMatrix<T, M, M> {
         self.noise

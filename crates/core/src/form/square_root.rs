@@ -207,11 +207,13 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
         match method {
             TimeUpdate::Householder => {
                 // Gathered by rows, scaled on the way (see
-                // `add_columns_by_rows`).
+                // `add_columns_by_rows`), through plain slices (nalgebra's
+                // element iterators are strided and general: they took a
+                // tenth of the step at N = 15).
                 let mut rows = [[[T::zero(); N]; 2]; D];
-                for (i, pair) in pairs.iter().enumerate() {
-                    for (row, (&plus, &minus)) in rows.iter_mut().zip(pair[0].iter().zip(&pair[1]))
-                    {
+                for (i, [plus, minus]) in pairs.iter().enumerate() {
+                    let columns = plus.as_slice().iter().zip(minus.as_slice());
+                    for (row, (&plus, &minus)) in rows.iter_mut().zip(columns) {
                         row[0][i] = plus * sqrt_w;
                         row[1][i] = minus * sqrt_w;
                     }

@@ -15,6 +15,7 @@ mod triangular;
 mod triangularize;
 
 pub use cholesky::{cholesky, cholesky_semidefinite, NotPositiveDefinite};
+pub use product::mul_vector;
 pub use rank_one::{rank_one_downdate, rank_one_update, weighted_rank_one};
 pub use symmetric::{
     add_weighted_outer_lower, joseph_expanded, joseph_factored_noise, mirror_lower, sandwich,
