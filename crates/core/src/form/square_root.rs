@@ -10,7 +10,7 @@ use crate::error::ensure_finite;
 use crate::linalg::{
     add_columns, add_columns_by_rows, cholesky_semidefinite, downdate_columns_in_place,
     downdate_in_place, mirror_lower, solve_lower, solve_lower_transpose, update_in_place,
-    weighted_rank_one,
+    weighted_rank_one_in_place,
 };
 use crate::sigma::{self, MeasuredSigma, MerweParams, Pairs, SigmaWeights};
 use crate::{
@@ -249,7 +249,7 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
             &measured.pairs,
             self.weights.other.sqrt(),
         );
-        weighted_rank_one(&mut sz, &measured.center, self.weights.cov0)
+        weighted_rank_one_in_place(&mut sz, &measured.center, self.weights.cov0)
             .map_err(|e| not_pd(e.index))?;
         // The same singularity test as `cholesky`: a pivot at or below
         // `M·ε` of its column's scale means C is singular to working precision.
@@ -329,12 +329,11 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Sq
             &propagated.pairs,
             (self.weights.other * weight).sqrt(),
         );
-        weighted_rank_one(&mut factor, &propagated.center, self.weights.cov0 * weight).map_err(
-            |e| FilterError::DowndateFailed {
+        weighted_rank_one_in_place(&mut factor, &propagated.center, self.weights.cov0 * weight)
+            .map_err(|e| FilterError::DowndateFailed {
                 column: 0,
                 index: e.index,
-            },
-        )?;
+            })?;
         ensure_finite(&factor, Quantity::PropagatedCovariance)?;
 
         *x = propagated.mean;

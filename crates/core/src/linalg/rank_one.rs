@@ -70,12 +70,30 @@ pub fn weighted_rank_one<T: Real, const N: usize>(
     v: &SVector<T, N>,
     w: T,
 ) -> Result<(), NotPositiveDefinite> {
-    let scaled = v * w.abs().sqrt();
-    if w >= T::zero() {
-        rank_one_update(s, &scaled)
-    } else {
-        rank_one_downdate(s, &scaled)
+    let mut work = *s;
+    weighted_rank_one_in_place(&mut work, v, w)?;
+    *s = work;
+    Ok(())
+}
+
+/// [`weighted_rank_one`] without the copy that keeps `s` on failure: on
+/// error `s` is partly modified and must be discarded.
+pub(crate) fn weighted_rank_one_in_place<T: Real, const N: usize>(
+    s: &mut SMatrix<T, N, N>,
+    v: &SVector<T, N>,
+    w: T,
+) -> Result<(), NotPositiveDefinite> {
+    let mut scaled = *v;
+    let f = w.abs().sqrt();
+    for x in scaled.as_mut_slice() {
+        *x *= f;
     }
+    if w >= T::zero() {
+        update_in_place(s, &mut scaled)
+    } else {
+        downdate_in_place(s, &mut scaled)
+    }
+    .map_err(|index| NotPositiveDefinite { index })
 }
 
 /// In-place Givens update; `v` is destroyed. On error (non-finite values)
