@@ -105,6 +105,54 @@ fn scaling_r_equals_a_model_with_scaled_r() {
     each_form!(scaled_noise);
 }
 
+/// Gives `R` by its lower factor ([`GainStep::set_noise_factor`]).
+#[derive(Clone, Debug)]
+struct NoiseByFactor(Matrix2<f64>);
+
+impl PriorAdapter<f64> for NoiseByFactor {}
+
+impl NoiseAdapter<f64, 2> for NoiseByFactor {
+    type Report = ();
+    fn before_gain(&mut self, step: &mut GainStep<f64, 2>, _: &mut ()) {
+        step.set_noise_factor(&self.0);
+    }
+}
+
+/// An `R` given by its factor is the `R` of a model with `L Lᵀ`: the form
+/// takes the factor into the Joseph update instead of factoring `R` itself.
+fn noise_by_factor<F: LinForm>(name: &str, f: Filter<f64, 2, F>) {
+    // L = [1.2 0; 0.5 0.9] (the 7 above the diagonal is not read).
+    let l = Matrix2::new(1.2, 7.0, 0.5, 0.9);
+    let r = Matrix2::new(1.44, 0.6, 0.6, 1.06);
+    let mut adapted = f.clone().with_adapter(NoiseByFactor(l));
+    let mut reference = f;
+    let sensor = two_sensors();
+    let reference_sensor =
+        kestrel::models::LinearMeasurement::new(Matrix2::new(1.0, 0.0, 1.0, 1.0), r);
+    for z in ZS {
+        let z = Vector2::new(z, 2.0 * z - 1.0);
+        adapted.predict(&process(), 1.0).unwrap();
+        reference.predict(&process(), 1.0).unwrap();
+        let got = adapted.update(&sensor, &z).unwrap();
+        let want = reference.update(&reference_sensor, &z).unwrap();
+        assert!(!want.sequential);
+        assert_same_estimate(name, &adapted, &reference);
+        assert_close(&got.noise, &r, 1e-15, name);
+        assert_close(
+            &got.innovation_covariance,
+            &want.innovation_covariance,
+            TOL,
+            name,
+        );
+        assert_scalar(got.adapted_nis, want.nis, TOL, name);
+    }
+}
+
+#[test]
+fn noise_given_by_its_factor_equals_a_model_with_that_noise() {
+    each_form!(noise_by_factor);
+}
+
 // (c) and (g) -----------------------------------------------------------------
 
 /// Where the fade comes from.

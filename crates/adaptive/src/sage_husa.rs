@@ -73,6 +73,9 @@ pub struct SageHusa<T: Real, const M: usize> {
     /// `b^{k+1}` for the next estimate `k`.
     power: T,
     estimate: SMatrix<T, M, M>,
+    /// The lower Cholesky factor of `estimate`, from its check (`None`
+    /// while `estimate` is the first update's `R`).
+    factor: Option<SMatrix<T, M, M>>,
     initialized: bool,
     floor: SVector<T, M>,
     skip_when_faded: bool,
@@ -133,6 +136,7 @@ impl<T: Real, const M: usize> SageHusa<T, M> {
             forgetting: b,
             power: b * b,
             estimate: SMatrix::zeros(),
+            factor: None,
             initialized: false,
             floor: SVector::zeros(),
             skip_when_faded: true,
@@ -159,13 +163,14 @@ impl<T: Real, const M: usize> SageHusa<T, M> {
     pub fn with_initial(mut self, r0: SMatrix<T, M, M>) -> Result<Self, FilterError> {
         let mut r0 = r0;
         kestrel_core::linalg::mirror_lower(&mut r0);
-        if cholesky(&r0).is_err() {
+        let Ok(factor) = cholesky(&r0) else {
             return Err(FilterError::InvalidParameter {
                 name: "initial",
                 valid: "a finite, symmetric, positive definite matrix",
             });
-        }
+        };
         self.estimate = r0;
+        self.factor = Some(factor);
         self.initialized = true;
         Ok(self)
     }
@@ -210,10 +215,14 @@ impl<T: Real, const M: usize> SageHusa<T, M> {
     }
 
     /// Puts `R̂` in place of the step's `R` (taking `R̂_0` from the step the
-    /// first time).
+    /// first time). `R̂` goes by the factor its check computed, so the form
+    /// does not factor it again: the update uses `L Lᵀ`, `R̂` to rounding.
     pub(crate) fn apply(&mut self, step: &mut GainStep<T, M>, report: &mut SageHusaReport<T>) {
         if self.initialized {
-            step.set_noise(self.estimate);
+            match &self.factor {
+                Some(l) => step.set_noise_factor(l),
+                None => step.set_noise(self.estimate),
+            }
         } else {
             self.estimate = *step.noise();
             self.initialized = true;
@@ -231,16 +240,20 @@ impl<T: Real, const M: usize> SageHusa<T, M> {
     /// The exponentially weighted update of `R̂` with this epoch's sample.
     fn estimate_from(&mut self, posterior: &Posterior<'_, T, M>, report: &mut SageHusaReport<T>) {
         let e = posterior.post_fit_residual();
-        let mut sample = posterior.posterior_covariance();
-        // e eᵀ is exactly symmetric; so is the posterior covariance.
-        sample.ger(T::one(), &e, &e, T::one());
+        let posterior_covariance = posterior.posterior_covariance();
         let d = (T::one() - self.forgetting) / (T::one() - self.power);
-        let mut next = self.estimate * (T::one() - d) + sample * d;
+        // One pass: (1 − d) R̂ + d (H P Hᵀ + e eᵀ). e eᵀ is exactly
+        // symmetric; so is the posterior covariance, and so is the sum.
+        let mut next = SMatrix::from_fn(|i, j| {
+            let sample = posterior_covariance[(i, j)] + e[i] * e[j];
+            self.estimate[(i, j)] * (T::one() - d) + sample * d
+        });
         for i in 0..M {
             next[(i, i)] = next[(i, i)].max(self.floor[i]);
         }
-        if cholesky(&next).is_ok() {
+        if let Ok(factor) = cholesky(&next) {
             self.estimate = next;
+            self.factor = Some(factor);
             self.power *= self.forgetting;
             self.count = self.count.saturating_add(1);
             report.weight = d;

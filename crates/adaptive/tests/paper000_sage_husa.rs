@@ -119,7 +119,19 @@ fn psd_every_step<T: Real, F: CvForm<T>>(
             .unwrap();
     }
     let mut f = make(cv::x0(), cv::p0()).with_adapter(sh);
-    support::run(&mut f, &stream, &cv::sensor(&assumed), |k, _, f| {
+    // The estimate the next update's gain must use (the first takes the
+    // model's `R`).
+    let mut previous = support::mat64(&assumed.map(support::to::<T>));
+    support::run(&mut f, &stream, &cv::sensor(&assumed), |k, report, f| {
+        // `R̂` reaches the gain by the factor of its check: `L Lᵀ`, `R̂` to
+        // rounding.
+        let used = support::mat64(&report.noise);
+        let tolerance = 64.0 * support::from(T::default_epsilon()) * previous.norm();
+        assert!(
+            (used - previous).norm() <= tolerance,
+            "{name} step {k}: R used {used}, R̂ {previous}"
+        );
+        previous = support::mat64(f.adapter().estimate());
         let r = f.adapter().estimate();
         assert!(support::symmetric_pd(r), "{name} step {k}: R̂ = {r}");
         if let Some(floor) = floor {

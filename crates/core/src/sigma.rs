@@ -7,7 +7,7 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use crate::error::ensure_finite;
+use crate::error::{diagnose, ensure_finite, is_finite};
 use crate::linalg::{add_products, add_weighted_outer_lower, mirror_lower};
 use crate::real::lit;
 use crate::{FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace};
@@ -197,12 +197,22 @@ where
     for pair in ys.iter_mut() {
         for v in pair.iter_mut() {
             *v = model.propagate(v, dt);
-            ensure_finite(v, Quantity::PropagatedState)?;
         }
     }
     let mut acc = SVector::<T, N>::zeros();
     for pair in &ys {
         acc += space.difference(&pair[0], &y0) + space.difference(&pair[1], &y0);
+    }
+    // One check of the sum instead of one per point: a non-finite point
+    // makes it non-finite (so does a sum that overflows, a mean that is
+    // not finite either way). The points are then checked to name it.
+    if !is_finite(&acc) {
+        diagnose(|| {
+            for v in ys.as_flattened() {
+                ensure_finite(v, Quantity::PropagatedState)?;
+            }
+            ensure_finite(&acc, Quantity::PropagatedState)
+        })?;
     }
     let mean = space.add(&y0, &(acc * w.other));
     let center = space.difference(&y0, &mean);
@@ -254,9 +264,17 @@ where
     for (zp, cp) in zs.iter_mut().zip(&chi) {
         for (zv, cv) in zp.iter_mut().zip(cp) {
             *zv = model.predict(cv);
-            ensure_finite(zv, Quantity::PredictedMeasurement)?;
             acc += model.residual(zv, &z0);
         }
+    }
+    // One check of the sum, as in `propagate`.
+    if !is_finite(&acc) {
+        diagnose(|| {
+            for v in zs.as_flattened() {
+                ensure_finite(v, Quantity::PredictedMeasurement)?;
+            }
+            ensure_finite(&acc, Quantity::PredictedMeasurement)
+        })?;
     }
     let z_hat = z0 + acc * w.other;
     let center = model.residual(&z0, &z_hat);

@@ -93,6 +93,8 @@ pub struct GainStep<'a, T: Real, const M: usize> {
     rejected: bool,
     covariance: SMatrix<T, M, M>,
     factor: Option<SMatrix<T, M, M>>,
+    /// The factor `noise` was given by ([`GainStep::set_noise_factor`]).
+    noise_factor: Option<SMatrix<T, M, M>>,
 }
 
 impl<T: Real, const M: usize> GainStep<'static, T, M> {
@@ -123,23 +125,11 @@ impl<T: Real, const M: usize> GainStep<'static, T, M> {
         noise: SMatrix<T, M, M>,
         factor: SMatrix<T, M, M>,
     ) -> Self {
-        Self {
-            raw_innovation: innovation,
-            innovation,
-            nominal_predicted: predicted,
-            split: match split {
-                Some(parts) => Split::Ready(parts),
-                None => Split::Absent,
-            },
-            nominal_noise: noise,
-            noise,
-            fade: T::one(),
-            innovation_scale: T::one(),
-            noise_changed: false,
-            rejected: false,
-            covariance: predicted + noise,
-            factor: Some(factor),
-        }
+        let split = match split {
+            Some(parts) => Split::Ready(parts),
+            None => Split::Absent,
+        };
+        Self::build(innovation, predicted, split, noise, factor)
     }
 }
 
@@ -154,37 +144,49 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
         noise: SMatrix<T, M, M>,
         factor: SMatrix<T, M, M>,
     ) -> Self {
-        let step = GainStep::with_factor(innovation, predicted, None, noise, factor);
-        GainStep {
-            split: Split::Lazy {
+        Self::build(
+            innovation,
+            predicted,
+            Split::Lazy {
                 compute: split,
                 parts: OnceCell::new(),
             },
-            ..step
+            noise,
+            factor,
+        )
+    }
+
+    /// The view with nothing adapted yet, built in place (no intermediate
+    /// view copied: it is a few KB).
+    #[inline(always)]
+    fn build(
+        innovation: SVector<T, M>,
+        predicted: SMatrix<T, M, M>,
+        split: Split<'a, T, M>,
+        noise: SMatrix<T, M, M>,
+        factor: SMatrix<T, M, M>,
+    ) -> Self {
+        Self {
+            raw_innovation: innovation,
+            innovation,
+            nominal_predicted: predicted,
+            split,
+            nominal_noise: noise,
+            noise,
+            fade: T::one(),
+            innovation_scale: T::one(),
+            noise_changed: false,
+            rejected: false,
+            covariance: predicted + noise,
+            factor: Some(factor),
+            noise_factor: None,
         }
     }
 
-    /// The same view without the source of a split not yet computed: what
-    /// the form reads after the adapters (which no longer need the split).
+    /// `H P⁻ Hᵀ + R` as the form gave them, before any adapter.
     #[inline(always)]
-    pub(crate) fn detached(self) -> GainStep<'static, T, M> {
-        GainStep {
-            raw_innovation: self.raw_innovation,
-            innovation: self.innovation,
-            nominal_predicted: self.nominal_predicted,
-            split: match self.split {
-                Split::Absent | Split::Lazy { .. } => Split::Absent,
-                Split::Ready(parts) => Split::Ready(parts),
-            },
-            nominal_noise: self.nominal_noise,
-            noise: self.noise,
-            fade: self.fade,
-            innovation_scale: self.innovation_scale,
-            noise_changed: self.noise_changed,
-            rejected: self.rejected,
-            covariance: self.covariance,
-            factor: self.factor,
-        }
+    pub(crate) fn nominal_innovation_covariance(&self) -> SMatrix<T, M, M> {
+        self.nominal_predicted + self.nominal_noise
     }
 
     /// The innovation as the adapters have left it so far.
@@ -296,8 +298,60 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
         let mut r = r;
         mirror_lower(&mut r);
         self.noise = r;
+        self.noise_factor = None;
         self.noise_changed = true;
         self.refresh();
+    }
+
+    /// Replaces the measurement noise covariance by `L Lᵀ`, given its lower
+    /// triangular factor `L` (the strict upper part of `l` is not read),
+    /// and keeps `L`: the form then takes `R` into the Joseph update
+    /// through it instead of factoring `R` again. An adapter that has the
+    /// factor of its `R` anyway (as [`cholesky`] of the estimate, to check
+    /// it) saves a factorisation per update this way.
+    ///
+    /// `L Lᵀ` is positive semi-definite for any `L`; a non-finite `L` gives
+    /// a non-finite `R`, which the form rejects as it does one given to
+    /// [`set_noise`](Self::set_noise).
+    ///
+    /// ```
+    /// use kestrel_core::adapter::GainStep;
+    /// use kestrel_core::nalgebra::{Matrix2, Vector2};
+    /// let mut step =
+    ///     GainStep::new(Vector2::zeros(), Matrix2::identity(), None, Matrix2::identity()).unwrap();
+    /// // L = [2 0; 1 3] (the 9 above the diagonal is not read): R = [4 2; 2 10].
+    /// step.set_noise_factor(&Matrix2::new(2.0, 9.0, 1.0, 3.0));
+    /// assert_eq!(*step.noise(), Matrix2::new(4.0, 2.0, 2.0, 10.0));
+    /// assert_eq!(step.noise_factor(), Some(&Matrix2::new(2.0, 0.0, 1.0, 3.0)));
+    /// assert_eq!(step.innovation_covariance()[(1, 1)], 11.0);
+    /// ```
+    pub fn set_noise_factor(&mut self, l: &SMatrix<T, M, M>) {
+        let mut lower = *l;
+        lower.fill_upper_triangle(T::zero(), 1);
+        // Column j of L Lᵀ is Σ_{k ≤ j} L_jk (column k of L): whole columns
+        // at a time. Elements (i, j) and (j, i) take the same products in
+        // the same order (L_ik = 0 for k > i), so R is exactly symmetric.
+        let columns = &lower.data.0;
+        let mut r = SMatrix::<T, M, M>::zeros();
+        for (j, out) in r.data.0.iter_mut().enumerate() {
+            for column in columns.iter().take(j + 1) {
+                let f = column[j];
+                for (o, &v) in out.iter_mut().zip(column) {
+                    *o += v * f;
+                }
+            }
+        }
+        self.noise = r;
+        self.noise_factor = Some(lower);
+        self.noise_changed = true;
+        self.refresh();
+    }
+
+    /// The lower triangular factor of the current `R` when an adapter gave
+    /// `R` by it ([`set_noise_factor`](Self::set_noise_factor)); `None` for
+    /// the model's `R` or one set by [`set_noise`](Self::set_noise).
+    pub fn noise_factor(&self) -> Option<&SMatrix<T, M, M>> {
+        self.noise_factor.as_ref()
     }
 
     /// Multiplies the innovation by `s` (outlier compression).
@@ -352,8 +406,7 @@ mod lazy_split_tests {
         // Not asked: never computed.
         let step = build(&parts);
         assert_eq!(step.mahalanobis(), Some(1.0));
-        // Detached after the adapters: the source is gone, nothing computed.
-        assert!(step.detached().split().is_none());
+        assert_eq!(step.predicted_covariance()[0], 4.0);
         assert_eq!(calls.get(), 0);
         // A fade needs the propagated part: computed once, and the result is
         // that of the split given up front (the type's own example).

@@ -1,6 +1,6 @@
 use nalgebra::{SMatrix, SVector};
 
-use crate::linalg::{solve_lower, solve_lower_transpose};
+use crate::linalg::{mirror_lower, mul_vector, solve_lower, solve_lower_transpose};
 use crate::Real;
 
 /// The measurement-space view of a completed update, given to
@@ -77,7 +77,7 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
 
     /// The post-fit residual `z − H x⁺ = (I − H K) ν = R C⁻¹ ν`.
     pub fn post_fit_residual(&self) -> SVector<T, M> {
-        self.noise * self.solve(self.innovation)
+        mul_vector(self.noise, &self.solve(self.innovation))
     }
 
     /// `H P⁺ Hᵀ = H_p − H_p C⁻¹ H_p`, computed as `H_p − GᵀG` with
@@ -85,8 +85,23 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
     pub fn posterior_covariance(&self) -> SMatrix<T, M, M> {
         let mut g = *self.predicted;
         solve_lower(self.factor, &mut g);
-        let mut out = self.predicted - g.transpose() * g;
-        crate::linalg::mirror_lower(&mut out);
+        // The lower triangle, element (i, j) as the dot product of columns
+        // i and j of G, then mirrored: half the products of `GᵀG`, and
+        // constant trip counts (bounds as conditions) so it unrolls.
+        let columns = &g.data.0;
+        let mut out = *self.predicted;
+        for j in 0..M {
+            for i in 0..M {
+                if i >= j {
+                    let mut dot = T::zero();
+                    for (a, b) in columns[i].iter().zip(&columns[j]) {
+                        dot += *a * *b;
+                    }
+                    out[(i, j)] -= dot;
+                }
+            }
+        }
+        mirror_lower(&mut out);
         out
     }
 }

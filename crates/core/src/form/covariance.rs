@@ -1,10 +1,10 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
-use super::outcome::{adapt_checked, adapt_checked_lazy, factor_of, joseph_gain, unadapted_update};
+use super::outcome::{adapt, factor_of, joseph_gain, nominal_factor, unadapted_update};
 use super::pending::PendingCovariance;
 use super::{sequential, FadeStates, Form, PredictForm, UpdateForm};
-use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
+use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::contract::{check_covariance, check_diagonal, check_noise_cached};
 use crate::error::{diagnose, ensure_finite, is_finite};
 use crate::linalg::{mirror_lower, sandwich_into, sandwich_transposed};
@@ -223,17 +223,22 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         // it asks (its divergence test failed).
         let hp = h * prior;
         let hph = sandwich_transposed(&hp, &h);
-        let mut done = if A::NEEDS_SPLIT {
-            let cov = &self.cov;
-            let parts = || cov.split(Some(&h), &hph);
-            adapt_checked_lazy(adapter, nu, hph, &parts, r)?
+        // The view borrows what the split is computed from while the
+        // posterior goes into the spare buffer (no copy of the view).
+        let (pending, spare) = self.cov.view_and_spare();
+        let parts = || pending.split(Some(&h), &hph);
+        let factor = nominal_factor(&hph, &r)?;
+        let mut step = if A::NEEDS_SPLIT {
+            GainStep::with_lazy_split(nu, hph, &parts, r, factor)
         } else {
-            adapt_checked(adapter, nu, hph, None, r)?
+            GainStep::with_factor(nu, hph, None, r, factor)
         };
+        let mut done = adapt(adapter, &mut step);
         let fade = done.step.fade_factor();
         if done.step.is_rejected() {
+            let report = done.rejected(nu);
             self.cov.commit(prior);
-            return Ok(done.rejected(nu));
+            return Ok(report);
         }
 
         // Borrowed, not moved: the matrices are hundreds of bytes each.
@@ -241,7 +246,7 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         let (prior, hp, hph) = if fade == T::one() {
             (&prior, &hp, &hph)
         } else {
-            let prior = self.cov.prior(fade);
+            let prior = pending.prior(fade);
             let hp = h * prior;
             let hph = sandwich_transposed(&hp, &h);
             refaded = (prior, hp, hph);
@@ -251,7 +256,12 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         done.check_used()?;
         let (r_used, nu_used) = (done.step.noise(), done.step.innovation());
         let c = hph + r_used;
-        let r_factor = r_factor.filter(|_| !done.step.noise_changed());
+        // An adapter's `R` comes with its factor when it gave one.
+        let r_factor = if done.step.noise_changed() {
+            done.step.noise_factor()
+        } else {
+            r_factor.as_ref()
+        };
         // The view's factor of `C` is this `C`'s only when nothing faded
         // (a fade recomputes `predicted` from the faded prior, which rounds
         // differently from the view's update).
@@ -260,27 +270,21 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             .flatten();
         let mut computed = None;
         let factor = factor_of(&c, known, &mut computed)?;
-        let gain = joseph_gain(
-            self.cov.spare(),
-            prior,
-            hp,
-            hph,
-            r_used,
-            r_factor.as_ref(),
-            &c,
-            factor,
-        )?;
+        let gain = joseph_gain(spare, prior, hp, hph, r_used, r_factor, &c, factor)?;
         let x_new = space.add(x, &gain.correction(nu_used));
         ensure_finite(&x_new, Quantity::UpdatedState)?;
 
+        // Nothing below can fail: the adapters see the update before the
+        // posterior in the spare buffer becomes current.
         *x = x_new;
-        let total_fade = self.cov.total_fade(fade);
-        self.cov.commit_spare();
+        let total_fade = pending.total_fade(fade);
         adapter.after_update(
             &Posterior::new(nu_used, hph, r_used, factor),
             &mut done.adapters,
         );
         let adapted_nis = done.adapted_nis(factor);
-        Ok(done.accepted(nu, c, adapted_nis, total_fade))
+        let report = done.accepted(nu, c, adapted_nis, total_fade);
+        self.cov.commit_spare();
+        Ok(report)
     }
 }

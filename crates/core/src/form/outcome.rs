@@ -200,9 +200,9 @@ pub(crate) fn factor_of<'a, T: Real, const M: usize>(
 }
 
 /// The state of an update after the adapters' `before_gain`.
-pub(crate) struct AdaptedStep<T: Real, const M: usize, R> {
-    pub step: GainStep<'static, T, M>,
-    pub nominal_c: SMatrix<T, M, M>,
+pub(crate) struct AdaptedStep<'s, 'a, T: Real, const M: usize, R> {
+    /// The view the adapters left, where the form built it.
+    pub step: &'s mut GainStep<'a, T, M>,
     pub nis: T,
     pub adapters: R,
 }
@@ -214,56 +214,35 @@ pub(crate) fn not_pd(index: usize) -> FilterError {
     }
 }
 
-/// Builds the adapters' view from the innovation, `H P⁻ Hᵀ`, its split and
-/// `R`, failing with the pivot index if `H P⁻ Hᵀ + R` is not positive
-/// definite, and runs the adapters on it.
+/// The lower Cholesky factor of `H P⁻ Hᵀ + R` as the model gives them:
+/// the check that the nominal innovation covariance is positive definite,
+/// before any adapter runs, failing with the pivot index.
 #[inline(always)]
-pub(crate) fn adapt_checked<T: Real, const M: usize, A: NoiseAdapter<T, M>>(
-    adapter: &mut A,
-    innovation: SVector<T, M>,
-    predicted: SMatrix<T, M, M>,
-    split: Option<(SMatrix<T, M, M>, SMatrix<T, M, M>)>,
-    noise: SMatrix<T, M, M>,
-) -> Result<AdaptedStep<T, M, A::Report>, FilterError> {
-    let factor = cholesky(&(predicted + noise)).map_err(|e| not_pd(e.index))?;
-    let step = GainStep::with_factor(innovation, predicted, split, noise, factor);
-    Ok(adapt(adapter, step))
+pub(crate) fn nominal_factor<T: Real, const M: usize>(
+    predicted: &SMatrix<T, M, M>,
+    noise: &SMatrix<T, M, M>,
+) -> Result<SMatrix<T, M, M>, FilterError> {
+    cholesky(&(predicted + noise)).map_err(|e| not_pd(e.index))
 }
 
-/// [`adapt_checked`] with the split computed by `split` only if an adapter
-/// asks for it.
+/// Runs the adapters on a freshly built view, in place (the view is a few
+/// KB: it stays where the form built it).
 #[inline(always)]
-pub(crate) fn adapt_checked_lazy<T: Real, const M: usize, A: NoiseAdapter<T, M>>(
+pub(crate) fn adapt<'s, 'a, T: Real, const M: usize, A: NoiseAdapter<T, M>>(
     adapter: &mut A,
-    innovation: SVector<T, M>,
-    predicted: SMatrix<T, M, M>,
-    split: &dyn Fn() -> (SMatrix<T, M, M>, SMatrix<T, M, M>),
-    noise: SMatrix<T, M, M>,
-) -> Result<AdaptedStep<T, M, A::Report>, FilterError> {
-    let factor = cholesky(&(predicted + noise)).map_err(|e| not_pd(e.index))?;
-    let step = GainStep::with_lazy_split(innovation, predicted, split, noise, factor);
-    Ok(adapt(adapter, step))
-}
-
-/// Runs the adapters on a freshly built view.
-#[inline(always)]
-pub(crate) fn adapt<T: Real, const M: usize, A: NoiseAdapter<T, M>>(
-    adapter: &mut A,
-    mut step: GainStep<'_, T, M>,
-) -> AdaptedStep<T, M, A::Report> {
-    let nominal_c = *step.innovation_covariance();
+    step: &'s mut GainStep<'a, T, M>,
+) -> AdaptedStep<'s, 'a, T, M, A::Report> {
     let nis = step.mahalanobis().unwrap_or_else(T::zero);
     let mut adapters = A::Report::default();
-    adapter.before_gain(&mut step, &mut adapters);
+    adapter.before_gain(step, &mut adapters);
     AdaptedStep {
-        step: step.detached(),
-        nominal_c,
+        step,
         nis,
         adapters,
     }
 }
 
-impl<T: Real, const M: usize, R> AdaptedStep<T, M, R> {
+impl<T: Real, const M: usize, R> AdaptedStep<'_, '_, T, M, R> {
     /// The noise and innovation the adapters settled on, checked finite.
     #[inline(always)]
     pub fn used(&self) -> Result<(SMatrix<T, M, M>, SVector<T, M>), FilterError> {
@@ -285,7 +264,7 @@ impl<T: Real, const M: usize, R> AdaptedStep<T, M, R> {
         UpdateReport {
             innovation,
             innovation_used: *self.step.innovation(),
-            nominal_innovation_covariance: self.nominal_c,
+            nominal_innovation_covariance: self.step.nominal_innovation_covariance(),
             innovation_covariance: *self.step.innovation_covariance(),
             noise: *self.step.noise(),
             nis: self.nis,
@@ -318,7 +297,7 @@ impl<T: Real, const M: usize, R> AdaptedStep<T, M, R> {
         UpdateReport {
             innovation,
             innovation_used: *self.step.innovation(),
-            nominal_innovation_covariance: self.nominal_c,
+            nominal_innovation_covariance: self.step.nominal_innovation_covariance(),
             innovation_covariance: c,
             noise: *self.step.noise(),
             nis: self.nis,

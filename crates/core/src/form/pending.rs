@@ -98,21 +98,7 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
     /// `D Φ P Φᵀ D + Q` (`λ_total Φ P Φᵀ + Q` when every state fades) for
     /// an extra fade `extra` on top of the pending one.
     pub fn prior(&self, extra: T) -> SMatrix<T, N, N> {
-        if self.pending {
-            let lambda = self.fade * extra;
-            if lambda == T::one() {
-                // Element by element into the result (nalgebra's `+`
-                // returns through a temporary and a copy).
-                let (p, q) = (self.p(), &self.q);
-                SMatrix::from_fn(|i, j| p[(i, j)] + q[(i, j)])
-            } else {
-                self.states.scale_symmetric(self.p(), lambda) + self.q
-            }
-        } else if extra == T::one() {
-            *self.p()
-        } else {
-            self.states.scale_symmetric(self.p(), extra)
-        }
+        self.view().prior(extra)
     }
 
     /// Whether a prediction is pending (the current buffer holds the
@@ -123,11 +109,7 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
 
     /// The fade applied to the propagated part with an extra fade `extra`.
     pub fn total_fade(&self, extra: T) -> T {
-        if self.pending {
-            self.fade * extra
-        } else {
-            extra
-        }
+        self.view().total_fade(extra)
     }
 
     /// Replaces the covariance by the posterior `p`; nothing is pending.
@@ -166,13 +148,97 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
         h: Option<&SMatrix<T, M, N>>,
         predicted: &SMatrix<T, M, M>,
     ) -> (SMatrix<T, M, M>, SMatrix<T, M, M>) {
+        self.view().split(h, predicted)
+    }
+
+    /// What [`prior`](Self::prior), [`split`](Self::split) and
+    /// [`total_fade`](Self::total_fade) read, borrowed.
+    fn view(&self) -> PendingView<'_, T, N> {
+        PendingView {
+            p: self.p(),
+            q: &self.q,
+            fade: self.fade,
+            pending: self.pending,
+            states: &self.states,
+        }
+    }
+
+    /// The borrowed view and the spare buffer at once, so that an update
+    /// can keep a lazily computed split (which reads the view) alive while
+    /// it writes the posterior into the spare buffer.
+    pub fn view_and_spare(&mut self) -> (PendingView<'_, T, N>, &mut SMatrix<T, N, N>) {
+        let [a, b] = &mut self.buffers;
+        let (p, spare) = if self.current & 1 == 0 {
+            (&*a, b)
+        } else {
+            (&*b, a)
+        };
+        let view = PendingView {
+            p,
+            q: &self.q,
+            fade: self.fade,
+            pending: self.pending,
+            states: &self.states,
+        };
+        (view, spare)
+    }
+}
+
+/// What the prior, the fading split and the total fade of a
+/// [`PendingCovariance`] are computed from, borrowed apart from its spare
+/// buffer.
+#[derive(Clone, Copy)]
+pub(crate) struct PendingView<'a, T: Real, const N: usize> {
+    /// The current buffer.
+    p: &'a SMatrix<T, N, N>,
+    q: &'a SMatrix<T, N, N>,
+    fade: T,
+    pending: bool,
+    states: &'a FadeStates<N>,
+}
+
+impl<T: Real, const N: usize> PendingView<'_, T, N> {
+    /// See [`PendingCovariance::prior`].
+    pub fn prior(&self, extra: T) -> SMatrix<T, N, N> {
+        if self.pending {
+            let lambda = self.fade * extra;
+            if lambda == T::one() {
+                // Element by element into the result (nalgebra's `+`
+                // returns through a temporary and a copy).
+                let (p, q) = (self.p, self.q);
+                SMatrix::from_fn(|i, j| p[(i, j)] + q[(i, j)])
+            } else {
+                self.states.scale_symmetric(self.p, lambda) + *self.q
+            }
+        } else if extra == T::one() {
+            *self.p
+        } else {
+            self.states.scale_symmetric(self.p, extra)
+        }
+    }
+
+    /// See [`PendingCovariance::total_fade`].
+    pub fn total_fade(&self, extra: T) -> T {
+        if self.pending {
+            self.fade * extra
+        } else {
+            extra
+        }
+    }
+
+    /// See [`PendingCovariance::split`].
+    pub fn split<const M: usize>(
+        &self,
+        h: Option<&SMatrix<T, M, N>>,
+        predicted: &SMatrix<T, M, M>,
+    ) -> (SMatrix<T, M, M>, SMatrix<T, M, M>) {
         match h {
             Some(h) if self.pending && self.states.is_all() => {
-                (sandwich(h, self.p()) * self.fade, sandwich(h, &self.q))
+                (sandwich(h, self.p) * self.fade, sandwich(h, self.q))
             }
             Some(h) if self.pending => (
-                sandwich(h, &self.states.scale_symmetric(self.p(), self.fade)),
-                sandwich(h, &self.q),
+                sandwich(h, &self.states.scale_symmetric(self.p, self.fade)),
+                sandwich(h, self.q),
             ),
             _ => (*predicted, SMatrix::zeros()),
         }

@@ -410,8 +410,8 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
                 _ => (c - r, SMatrix::zeros()),
             }
         });
-        let step = GainStep::with_factor(nu, c - r, split, r, sz);
-        let mut done = adapt(adapter, step);
+        let mut step = GainStep::with_factor(nu, c - r, split, r, sz);
+        let mut done = adapt(adapter, &mut step);
         let fade = done.step.fade_factor();
         if done.step.is_rejected() {
             self.commit(prior);
@@ -419,13 +419,20 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         }
 
         let (r_used, nu_used) = done.used()?;
+        // The factor of the `R` used: the model's, the one an adapter gave
+        // with its `R`, or one computed here.
+        let used_factor = || match (done.step.noise_changed(), done.step.noise_factor()) {
+            (false, _) => Ok(sr),
+            (true, Some(l)) => Ok(*l),
+            (true, None) => noise_factor(&r_used),
+        };
         let (prior, measured, sz) = if fade != T::one() {
             let prior = self.prior_factor(fade);
             let measured = sigma::measure(x, &prior, &w, model, space)?;
-            let sz = self.innovation_factor(&measured, &noise_factor(&r_used)?)?;
+            let sz = self.innovation_factor(&measured, &used_factor()?)?;
             (prior, measured, sz)
         } else if done.step.noise_changed() {
-            let sz = self.innovation_factor(&measured, &noise_factor(&r_used)?)?;
+            let sz = self.innovation_factor(&measured, &used_factor()?)?;
             (prior, measured, sz)
         } else {
             (prior, measured, sz)

@@ -1,10 +1,10 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
-use super::outcome::{adapt_checked, factor_of, joseph_gain, unadapted_update};
+use super::outcome::{adapt, factor_of, joseph_gain, nominal_factor, unadapted_update};
 use super::pending::PendingCovariance;
 use super::{FadeStates, Form, PredictForm, UpdateForm};
-use crate::adapter::{NoiseAdapter, Posterior, PriorAdapter, PriorStep};
+use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::contract::{check_covariance, check_noise_cached};
 use crate::error::ensure_finite;
 use crate::linalg::{
@@ -209,7 +209,9 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             let h = effective_jacobian(&s, &measured.cross);
             self.cov.split(h.as_ref(), &pzz)
         });
-        let mut done = adapt_checked(adapter, nu, pzz, split, r)?;
+        let nominal = nominal_factor(&pzz, &r)?;
+        let mut step = GainStep::with_factor(nu, pzz, split, r, nominal);
+        let mut done = adapt(adapter, &mut step);
         let fade = done.step.fade_factor();
         if done.step.is_rejected() {
             self.cov.commit(prior);
@@ -231,7 +233,12 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         done.check_used()?;
         let (r_used, nu_used) = (done.step.noise(), done.step.innovation());
         let c = pzz + r_used;
-        let r_factor = (!done.step.noise_changed()).then_some(r_factor);
+        // An adapter's `R` comes with its factor when it gave one.
+        let r_factor = if done.step.noise_changed() {
+            done.step.noise_factor().copied()
+        } else {
+            Some(r_factor)
+        };
         // The view's factor of `C` is this `C`'s only when nothing faded
         // (a fade recomputes `predicted` from the faded prior, which rounds
         // differently from the view's update).

@@ -37,9 +37,18 @@ impl core::error::Error for NotPositiveDefinite {}
 pub fn cholesky<T: Real, const N: usize>(
     a: &SMatrix<T, N, N>,
 ) -> Result<SMatrix<T, N, N>, NotPositiveDefinite> {
+    cholesky_by(a, N < UNROLL_FROM)
+}
+
+/// [`cholesky`] by the unrolled (`small`) or the column-loop elimination.
+#[inline(always)]
+fn cholesky_by<T: Real, const N: usize>(
+    a: &SMatrix<T, N, N>,
+    small: bool,
+) -> Result<SMatrix<T, N, N>, NotPositiveDefinite> {
     let rel = epsilon::<T>() * lit::<T>(N as f64);
     let mut l = *a;
-    factor(&mut l, |k, d, original, _column| {
+    factor(&mut l, small, |k, d, original, _column| {
         if d.is_finite() && d > rel * original.abs() && d > T::zero() {
             Ok(Some(d.sqrt()))
         } else {
@@ -82,13 +91,23 @@ pub fn cholesky_semidefinite<T: Real, const N: usize>(
 pub(crate) fn cholesky_semidefinite_in_place<T: Real, const N: usize>(
     a: &mut SMatrix<T, N, N>,
 ) -> Result<(), NotPositiveDefinite> {
+    semidefinite_by(a, N < UNROLL_FROM)
+}
+
+/// [`cholesky_semidefinite_in_place`] by the unrolled (`small`) or the
+/// column-loop elimination.
+#[inline(always)]
+fn semidefinite_by<T: Real, const N: usize>(
+    a: &mut SMatrix<T, N, N>,
+    small: bool,
+) -> Result<(), NotPositiveDefinite> {
     let mut scale = T::zero();
     for i in 0..N {
         scale = scale.max(a[(i, i)].abs());
     }
     let rel = epsilon::<T>() * lit::<T>(N as f64);
     let tol = rel * scale;
-    factor(a, |k, d, original, column: &[T]| {
+    factor(a, small, |k, d, original, column: &[T]| {
         if !d.is_finite() || d < -tol {
             return Err(NotPositiveDefinite { index: k });
         }
@@ -106,7 +125,8 @@ pub(crate) fn cholesky_semidefinite_in_place<T: Real, const N: usize>(
     })
 }
 
-/// The size from which [`factor`] takes four columns per pass.
+/// The size from which [`factor`] takes four columns per pass; below it,
+/// the unrolled elimination ([`factor_small`]).
 const UNROLL_FROM: usize = 10;
 
 /// Left-looking column Cholesky: column `j` of the working copy receives
@@ -119,8 +139,12 @@ const UNROLL_FROM: usize = 10;
 #[inline(always)]
 fn factor<T: Real, const N: usize>(
     l: &mut SMatrix<T, N, N>,
+    small: bool,
     mut pivot: impl FnMut(usize, T, T, &[T]) -> Result<Option<T>, NotPositiveDefinite>,
 ) -> Result<(), NotPositiveDefinite> {
+    if small {
+        return factor_small(l, pivot);
+    }
     let original: [T; N] = core::array::from_fn(|j| l[(j, j)]);
     let s = l.as_mut_slice();
     for j in 0..N {
@@ -179,6 +203,71 @@ fn factor<T: Real, const N: usize>(
         // The strict upper part of the column still holds the input.
         for v in &mut rest[..j] {
             *v = T::zero();
+        }
+    }
+    Ok(())
+}
+
+/// [`factor`] below `UNROLL_FROM`, with every loop at a trip count known
+/// at compile time (bounds as conditions), so it unrolls into straight-line
+/// code, and with the square roots off the chain from one column to the
+/// next: the columns are eliminated unscaled, `u_ij = a_ij − Σ_k u_ik
+/// (u_jk / d_k)` with pivots `d_j = u_jj` (the square-root-free `L D Lᵀ`
+/// recurrence, one division per pivot on the chain), and scaled to
+/// `l_ij = u_ij / √d_j` at the end. Mathematically `u_ik = l_ik √d_k`, so
+/// the pivots, their tests and the factor are those of [`factor`] to
+/// rounding; at small sizes the square root and division per pivot of the
+/// textbook order are most of the factorisation's latency.
+#[inline(always)]
+fn factor_small<T: Real, const N: usize>(
+    l: &mut SMatrix<T, N, N>,
+    mut pivot: impl FnMut(usize, T, T, &[T]) -> Result<Option<T>, NotPositiveDefinite>,
+) -> Result<(), NotPositiveDefinite> {
+    let original: [T; N] = core::array::from_fn(|j| l[(j, j)]);
+    let mut inv_d = [T::zero(); N];
+    let mut roots = [T::zero(); N];
+    let s = l.as_mut_slice();
+    for j in 0..N {
+        for k in 0..N {
+            if k < j {
+                let t = s[k * N + j] * inv_d[k];
+                for i in 0..N {
+                    if i >= j {
+                        s[j * N + i] -= s[k * N + i] * t;
+                    }
+                }
+            }
+        }
+        let d = s[j * N + j];
+        match pivot(j, d, original[j], &s[j * N + j + 1..j * N + N])? {
+            Some(root) => {
+                inv_d[j] = d.recip();
+                roots[j] = root;
+            }
+            // A zero column: it takes no further part (`1/d = 0`).
+            None => {
+                for i in 0..N {
+                    if i > j {
+                        s[j * N + i] = T::zero();
+                    }
+                }
+            }
+        }
+    }
+    for j in 0..N {
+        let scale = if roots[j] > T::zero() {
+            roots[j].recip()
+        } else {
+            T::zero()
+        };
+        for i in 0..N {
+            if i < j {
+                s[j * N + i] = T::zero();
+            } else if i == j {
+                s[j * N + i] = roots[j];
+            } else {
+                s[j * N + i] *= scale;
+            }
         }
     }
     Ok(())
@@ -249,6 +338,80 @@ mod tests {
         let l = cholesky_semidefinite(&p).unwrap();
         assert_eq!(l.column(5).norm(), 0.0);
         assert_relative_eq!(l * l.transpose(), p, epsilon = 1e-12);
+    }
+
+    /// The unrolled elimination used below `UNROLL_FROM` equals the column
+    /// loop to rounding, fails at the same pivot, and gives the same zero
+    /// columns, at every size it serves.
+    #[test]
+    fn the_unrolled_elimination_equals_the_column_loop() {
+        fn check<const N: usize>() {
+            for seed in 0..20 {
+                // Pseudo-random entries in [−½, ½) (a sine of a linear index
+                // would give a matrix of rank two).
+                let f = |i: usize, j: usize| {
+                    // SplitMix64 of the element's index.
+                    let mut x =
+                        ((seed * 97 + i * 13 + j) as u64).wrapping_add(0x9e37_79b9_7f4a_7c15);
+                    x = (x ^ (x >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+                    x = (x ^ (x >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+                    x ^= x >> 31;
+                    (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+                };
+                let a = SMatrix::<f64, N, N>::from_fn(f);
+                // Well and badly scaled positive definite.
+                let scale =
+                    SMatrix::<f64, N, N>::from_diagonal(&nalgebra::SVector::from_fn(|i, _| {
+                        10f64.powi((i * seed) as i32 % 7 - 3)
+                    }));
+                // chol(S M S) = S chol(M) for a positive diagonal S: compared
+                // as S⁻¹ L, whose entries are of order one.
+                let unscale = scale.try_inverse().unwrap();
+                for (p, back) in [
+                    (a * a.transpose() + SMatrix::identity(), SMatrix::identity()),
+                    (
+                        scale * (a * a.transpose() + SMatrix::identity() * 1e-3) * scale,
+                        unscale,
+                    ),
+                ] {
+                    let (small, general) = (cholesky_by(&p, true), cholesky_by(&p, false));
+                    let (small, general) = (small.unwrap(), general.unwrap());
+                    assert_relative_eq!(back * small, back * general, epsilon = 1e-12);
+                    assert_eq!(
+                        small.upper_triangle(),
+                        SMatrix::from_diagonal(&small.diagonal())
+                    );
+                }
+                // Indefinite: the same failing pivot.
+                let mut bad = a * a.transpose() + SMatrix::identity();
+                let k = seed % N;
+                bad[(k, k)] = -1.0;
+                assert_eq!(cholesky_by(&bad, true), cholesky_by(&bad, false));
+                assert!(cholesky_by(&bad, true).is_err());
+                // Semi-definite with a zero state: the same zero column.
+                let z = SMatrix::<f64, N, N>::from_fn(|i, j| if i == k { 0.0 } else { f(i, j) });
+                let p = z * z.transpose();
+                let (mut small, mut general) = (p, p);
+                let (rs, rg) = (
+                    semidefinite_by(&mut small, true),
+                    semidefinite_by(&mut general, false),
+                );
+                assert_eq!(rs, rg);
+                assert!(rs.is_ok());
+                assert_eq!(small.column(k).norm(), 0.0);
+                assert_eq!(general.column(k).norm(), 0.0);
+                assert_relative_eq!(small, general, epsilon = 1e-12);
+            }
+        }
+        check::<1>();
+        check::<2>();
+        check::<3>();
+        check::<4>();
+        check::<5>();
+        check::<6>();
+        check::<7>();
+        check::<8>();
+        check::<9>();
     }
 
     #[test]

@@ -4,6 +4,10 @@ use super::NotPositiveDefinite;
 use crate::real::{epsilon, lit};
 use crate::Real;
 
+/// The order below which [`Ldl::new`] takes every loop with a constant trip
+/// count, so that it unrolls completely.
+const UNROLLED_BELOW: usize = 10;
+
 /// The square-root-free factorisation `A = L D Lᵀ` of a symmetric positive
 /// definite matrix (`L` unit lower triangular, `D` diagonal), for solving
 /// with `A` where no Cholesky factor is needed afterwards.
@@ -31,12 +35,48 @@ impl<T: Real, const M: usize> Ldl<T, M> {
         if M == 2 {
             return Self::two_by_two(a, rel);
         }
+        Self::by(a, M < UNROLLED_BELOW)
+    }
+
+    /// [`new`](Self::new) above two states, by the unrolled (`small`) or
+    /// the column-loop elimination.
+    #[inline(always)]
+    fn by(a: &SMatrix<T, M, M>, small: bool) -> Result<Self, NotPositiveDefinite> {
+        let rel = epsilon::<T>() * lit::<T>(M as f64);
         // Left-looking: column j receives −l_ik (l_jk d_k) for each finished
         // column k, then is divided by its pivot.
         let mut l = *a;
         let mut d = [T::zero(); M];
         let mut inv_d = [T::zero(); M];
         let s = l.as_mut_slice();
+        if small {
+            // The same operations with constant trip counts (bounds as
+            // conditions), so the factorisation unrolls completely.
+            for j in 0..M {
+                for k in 0..M {
+                    if k < j {
+                        let ujk = s[k * M + j] * d[k];
+                        for i in 0..M {
+                            if i >= j {
+                                s[j * M + i] -= s[k * M + i] * ujk;
+                            }
+                        }
+                    }
+                }
+                let pivot = s[j * M + j];
+                if !(pivot.is_finite() && pivot > rel * a[(j, j)].abs() && pivot > T::zero()) {
+                    return Err(NotPositiveDefinite { index: j });
+                }
+                d[j] = pivot;
+                inv_d[j] = pivot.recip();
+                for i in 0..M {
+                    if i > j {
+                        s[j * M + i] *= inv_d[j];
+                    }
+                }
+            }
+            return Ok(Self { l, inv_d });
+        }
         for j in 0..M {
             let (done, rest) = s.split_at_mut(j * M);
             let col = &mut rest[j..M];
@@ -157,6 +197,37 @@ mod tests {
         let v = Vector3::new(1.0, -2.0, 0.5);
         let direct = v.dot(&(a.try_inverse().unwrap() * v));
         assert_relative_eq!(f.quadratic_form(&v), direct, epsilon = 1e-13);
+    }
+
+    /// The unrolled elimination used below `UNROLLED_BELOW` equals the
+    /// column loop to rounding and fails at the same pivot.
+    #[test]
+    fn the_unrolled_elimination_equals_the_column_loop() {
+        fn check<const M: usize>() {
+            for seed in 0..10 {
+                let a = SMatrix::<f64, M, M>::from_fn(|i, j| {
+                    ((i * i * 5 + j * 3 + i * j + seed * 11) as f64).sin()
+                });
+                let p = a * a.transpose() + SMatrix::identity() * 0.1;
+                let (small, general) = (Ldl::by(&p, true).unwrap(), Ldl::by(&p, false).unwrap());
+                assert_relative_eq!(
+                    small.l.lower_triangle(),
+                    general.l.lower_triangle(),
+                    epsilon = 1e-12
+                );
+                for (s, g) in small.inv_d.iter().zip(&general.inv_d) {
+                    assert_relative_eq!(*s, *g, max_relative = 1e-12);
+                }
+                let mut bad = p;
+                bad[(seed % M, seed % M)] = -1.0;
+                assert_eq!(Ldl::by(&bad, true).err(), Ldl::by(&bad, false).err());
+                assert!(Ldl::by(&bad, true).is_err());
+            }
+        }
+        check::<3>();
+        check::<4>();
+        check::<6>();
+        check::<9>();
     }
 
     #[test]
