@@ -203,17 +203,7 @@ where
     for pair in &ys {
         acc += space.difference(&pair[0], &y0) + space.difference(&pair[1], &y0);
     }
-    // One check of the sum instead of one per point: a non-finite point
-    // makes it non-finite (so does a sum that overflows, a mean that is
-    // not finite either way). The points are then checked to name it.
-    if !is_finite(&acc) {
-        diagnose(|| {
-            for v in ys.as_flattened() {
-                ensure_finite(v, Quantity::PropagatedState)?;
-            }
-            ensure_finite(&acc, Quantity::PropagatedState)
-        })?;
-    }
+    check_sum(&acc, &ys, Quantity::PropagatedState)?;
     let mean = space.add(&y0, &(acc * w.other));
     let center = space.difference(&y0, &mean);
     for pair in ys.iter_mut() {
@@ -225,6 +215,27 @@ where
         mean,
         center,
         pairs: ys,
+    })
+}
+
+/// One finiteness check of the sum of a sigma set's deviations instead of
+/// one per point: a non-finite point makes the sum non-finite (so does a
+/// sum that overflows, whose mean is not finite either). Only then are the
+/// points checked, to name the first that is not finite as `what`.
+#[inline(always)]
+fn check_sum<T: Real, const D: usize, const N: usize>(
+    sum: &SVector<T, D>,
+    points: &Pairs<T, D, N>,
+    what: Quantity,
+) -> Result<(), FilterError> {
+    if is_finite(sum) {
+        return Ok(());
+    }
+    diagnose(|| {
+        for v in points.as_flattened() {
+            ensure_finite(v, what)?;
+        }
+        ensure_finite(sum, what)
     })
 }
 
@@ -267,15 +278,7 @@ where
             acc += model.residual(zv, &z0);
         }
     }
-    // One check of the sum, as in `propagate`.
-    if !is_finite(&acc) {
-        diagnose(|| {
-            for v in zs.as_flattened() {
-                ensure_finite(v, Quantity::PredictedMeasurement)?;
-            }
-            ensure_finite(&acc, Quantity::PredictedMeasurement)
-        })?;
-    }
+    check_sum(&acc, &zs, Quantity::PredictedMeasurement)?;
     let z_hat = z0 + acc * w.other;
     let center = model.residual(&z0, &z_hat);
     let mut cross = SMatrix::<T, N, M>::zeros();

@@ -221,39 +221,11 @@ fn factor<T: Real, const N: usize>(
 #[inline(always)]
 fn factor_small<T: Real, const N: usize>(
     l: &mut SMatrix<T, N, N>,
-    mut pivot: impl FnMut(usize, T, T, &[T]) -> Result<Option<T>, NotPositiveDefinite>,
+    pivot: impl FnMut(usize, T, T, &[T]) -> Result<Option<T>, NotPositiveDefinite>,
 ) -> Result<(), NotPositiveDefinite> {
     let original: [T; N] = core::array::from_fn(|j| l[(j, j)]);
-    let mut inv_d = [T::zero(); N];
-    let mut roots = [T::zero(); N];
     let s = l.as_mut_slice();
-    for j in 0..N {
-        for k in 0..N {
-            if k < j {
-                let t = s[k * N + j] * inv_d[k];
-                for i in 0..N {
-                    if i >= j {
-                        s[j * N + i] -= s[k * N + i] * t;
-                    }
-                }
-            }
-        }
-        let d = s[j * N + j];
-        match pivot(j, d, original[j], &s[j * N + j + 1..j * N + N])? {
-            Some(root) => {
-                inv_d[j] = d.recip();
-                roots[j] = root;
-            }
-            // A zero column: it takes no further part (`1/d = 0`).
-            None => {
-                for i in 0..N {
-                    if i > j {
-                        s[j * N + i] = T::zero();
-                    }
-                }
-            }
-        }
-    }
+    let (_, roots) = eliminate_unrolled(s, &original, pivot)?;
     for j in 0..N {
         let scale = if roots[j] > T::zero() {
             roots[j].recip()
@@ -271,6 +243,51 @@ fn factor_small<T: Real, const N: usize>(
         }
     }
     Ok(())
+}
+
+/// The unscaled elimination of [`factor_small`], shared with the unrolled
+/// [`Ldl`](super::Ldl): on the column-major `N × N` slice `s`, column `j`
+/// below the diagonal becomes `u_ij = a_ij − Σ_k u_ik (u_jk / d_k)` and its
+/// diagonal the pivot `d_j`, each loop at a constant trip count so it
+/// unrolls. `pivot(j, d_j, a_jj, u_·j below)` accepts a pivot (`Some`, with
+/// its square root or any value the caller keeps) or makes its column zero
+/// (`None`). Returns `1/d_j` (zero for a zero column) and what `pivot` gave.
+#[inline(always)]
+pub(super) fn eliminate_unrolled<T: Real, const N: usize>(
+    s: &mut [T],
+    original: &[T; N],
+    mut pivot: impl FnMut(usize, T, T, &[T]) -> Result<Option<T>, NotPositiveDefinite>,
+) -> Result<([T; N], [T; N]), NotPositiveDefinite> {
+    let mut inv_d = [T::zero(); N];
+    let mut kept = [T::zero(); N];
+    for j in 0..N {
+        for k in 0..N {
+            if k < j {
+                let t = s[k * N + j] * inv_d[k];
+                for i in 0..N {
+                    if i >= j {
+                        s[j * N + i] -= s[k * N + i] * t;
+                    }
+                }
+            }
+        }
+        let d = s[j * N + j];
+        match pivot(j, d, original[j], &s[j * N + j + 1..j * N + N])? {
+            Some(value) => {
+                inv_d[j] = d.recip();
+                kept[j] = value;
+            }
+            // A zero column: it takes no further part (`1/d = 0`).
+            None => {
+                for i in 0..N {
+                    if i > j {
+                        s[j * N + i] = T::zero();
+                    }
+                }
+            }
+        }
+    }
+    Ok((inv_d, kept))
 }
 
 #[cfg(test)]

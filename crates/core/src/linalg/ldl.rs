@@ -1,5 +1,6 @@
 use nalgebra::{SMatrix, SVector};
 
+use super::cholesky::eliminate_unrolled;
 use super::NotPositiveDefinite;
 use crate::real::{epsilon, lit};
 use crate::Real;
@@ -43,32 +44,20 @@ impl<T: Real, const M: usize> Ldl<T, M> {
     #[inline(always)]
     fn by(a: &SMatrix<T, M, M>, small: bool) -> Result<Self, NotPositiveDefinite> {
         let rel = epsilon::<T>() * lit::<T>(M as f64);
-        // Left-looking: column j receives −l_ik (l_jk d_k) for each finished
-        // column k, then is divided by its pivot.
         let mut l = *a;
-        let mut d = [T::zero(); M];
-        let mut inv_d = [T::zero(); M];
         let s = l.as_mut_slice();
         if small {
-            // The same operations with constant trip counts (bounds as
-            // conditions), so the factorisation unrolls completely.
+            // The unrolled elimination the small Cholesky uses (it keeps the
+            // columns unscaled), then `l_ij = u_ij / d_j`.
+            let original: [T; M] = core::array::from_fn(|j| a[(j, j)]);
+            let (inv_d, _) = eliminate_unrolled(s, &original, |j, pivot, a_jj, _| {
+                if pivot.is_finite() && pivot > rel * a_jj.abs() && pivot > T::zero() {
+                    Ok(Some(pivot))
+                } else {
+                    Err(NotPositiveDefinite { index: j })
+                }
+            })?;
             for j in 0..M {
-                for k in 0..M {
-                    if k < j {
-                        let ujk = s[k * M + j] * d[k];
-                        for i in 0..M {
-                            if i >= j {
-                                s[j * M + i] -= s[k * M + i] * ujk;
-                            }
-                        }
-                    }
-                }
-                let pivot = s[j * M + j];
-                if !(pivot.is_finite() && pivot > rel * a[(j, j)].abs() && pivot > T::zero()) {
-                    return Err(NotPositiveDefinite { index: j });
-                }
-                d[j] = pivot;
-                inv_d[j] = pivot.recip();
                 for i in 0..M {
                     if i > j {
                         s[j * M + i] *= inv_d[j];
@@ -77,6 +66,10 @@ impl<T: Real, const M: usize> Ldl<T, M> {
             }
             return Ok(Self { l, inv_d });
         }
+        // Left-looking: column j receives −l_ik (l_jk d_k) for each finished
+        // column k, then is divided by its pivot.
+        let mut d = [T::zero(); M];
+        let mut inv_d = [T::zero(); M];
         for j in 0..M {
             let (done, rest) = s.split_at_mut(j * M);
             let col = &mut rest[j..M];
