@@ -157,6 +157,36 @@ fn noise_given_by_its_factor_equals_a_model_with_that_noise() {
     each_form!(noise_by_factor);
 }
 
+/// A factor that is not finite gives an `R` that is not finite: the update
+/// is refused as for one given by `set_noise`, and the filter is unchanged.
+fn non_finite_noise_factor<F: LinForm>(name: &str, f: Filter<f64, 2, F>) {
+    for bad in [f64::NAN, f64::INFINITY, -f64::INFINITY] {
+        let l = Matrix2::new(1.0, 0.0, bad, 1.0);
+        let mut f = f.clone().with_adapter(NoiseByFactor(l));
+        f.predict(&process(), 1.0).unwrap();
+        let (x, p) = (*f.state(), f.covariance());
+        let err = f
+            .update(&two_sensors(), &Vector2::new(6.0, 11.0))
+            .unwrap_err();
+        assert!(
+            matches!(
+                err,
+                kestrel::FilterError::NonFinite {
+                    what: kestrel::Quantity::MeasurementNoise,
+                    ..
+                }
+            ),
+            "{name}: {err:?}"
+        );
+        assert_eq!((*f.state(), f.covariance()), (x, p), "{name}");
+    }
+}
+
+#[test]
+fn a_non_finite_noise_factor_is_refused() {
+    each_form!(non_finite_noise_factor);
+}
+
 // (c) and (g) -----------------------------------------------------------------
 
 /// Where the fade comes from.

@@ -221,7 +221,10 @@ where
 /// One finiteness check of the sum of a sigma set's deviations instead of
 /// one per point: a non-finite point makes the sum non-finite (so does a
 /// sum that overflows, whose mean is not finite either). Only then are the
-/// points checked, to name the first that is not finite as `what`.
+/// points checked, to name the first that is not finite as `what`. This
+/// relies on a state space's `difference` and a model's `residual` carrying
+/// a non-finite input through to their result, as subtraction and the
+/// angle wraps of the project's models do.
 #[inline(always)]
 fn check_sum<T: Real, const D: usize, const N: usize>(
     sum: &SVector<T, D>,

@@ -256,12 +256,7 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         done.check_used()?;
         let (r_used, nu_used) = (done.step.noise(), done.step.innovation());
         let c = hph + r_used;
-        // An adapter's `R` comes with its factor when it gave one.
-        let r_factor = if done.step.noise_changed() {
-            done.step.noise_factor()
-        } else {
-            r_factor.as_ref()
-        };
+        let r_factor = done.noise_factor(r_factor.as_ref());
         // The view's factor of `C` is this `C`'s only when nothing faded
         // (a fade recomputes `predicted` from the faded prior, which rounds
         // differently from the view's update).

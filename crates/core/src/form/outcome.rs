@@ -250,6 +250,21 @@ impl<T: Real, const M: usize, R> AdaptedStep<'_, '_, T, M, R> {
         Ok((*self.step.noise(), *self.step.innovation()))
     }
 
+    /// The lower factor of the `R` the adapters settled on, when one is
+    /// known: the model's (`model`) if no adapter replaced `R`, else the one
+    /// an adapter gave with it ([`GainStep::set_noise_factor`]).
+    #[inline(always)]
+    pub fn noise_factor<'f>(
+        &'f self,
+        model: Option<&'f SMatrix<T, M, M>>,
+    ) -> Option<&'f SMatrix<T, M, M>> {
+        if self.step.noise_changed() {
+            self.step.noise_factor()
+        } else {
+            model
+        }
+    }
+
     /// Checks that the noise and innovation the adapters settled on
     /// (`step.noise()`, `step.innovation()`, read by reference) are finite.
     #[inline(always)]

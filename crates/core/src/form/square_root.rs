@@ -421,10 +421,9 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         let (r_used, nu_used) = done.used()?;
         // The factor of the `R` used: the model's, the one an adapter gave
         // with its `R`, or one computed here.
-        let used_factor = || match (done.step.noise_changed(), done.step.noise_factor()) {
-            (false, _) => Ok(sr),
-            (true, Some(l)) => Ok(*l),
-            (true, None) => noise_factor(&r_used),
+        let used_factor = || {
+            done.noise_factor(Some(&sr))
+                .map_or_else(|| noise_factor(&r_used), |l| Ok(*l))
         };
         let (prior, measured, sz) = if fade != T::one() {
             let prior = self.prior_factor(fade);

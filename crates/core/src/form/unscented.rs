@@ -233,12 +233,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         done.check_used()?;
         let (r_used, nu_used) = (done.step.noise(), done.step.innovation());
         let c = pzz + r_used;
-        // An adapter's `R` comes with its factor when it gave one.
-        let r_factor = if done.step.noise_changed() {
-            done.step.noise_factor().copied()
-        } else {
-            Some(r_factor)
-        };
+        let r_factor = done.noise_factor(Some(&r_factor));
         // The view's factor of `C` is this `C`'s only when nothing faded
         // (a fade recomputes `predicted` from the faded prior, which rounds
         // differently from the view's update).
@@ -253,7 +248,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             &measured.cross.transpose(),
             pzz,
             r_used,
-            r_factor.as_ref(),
+            r_factor,
             &c,
             factor,
         )?;
