@@ -360,6 +360,11 @@ fn posterior_view<F: LinForm, const SPLIT: bool>(
         assert_slice(&seen.noise, report.noise.as_slice(), TOL, name);
         let predicted = report.innovation_covariance - report.noise;
         assert_slice(&seen.predicted, predicted.as_slice(), TOL, name);
+        // The two together (the residual through `Gᵀ L⁻¹ ν`) equal them
+        // apart, and the whitened innovation gives the adapted NIS.
+        assert_slice(&seen.together.0, residual.as_slice(), TOL, name);
+        assert_slice(&seen.together.1, projected.as_slice(), TOL, name);
+        assert_scalar(seen.whitened_norm2, report.adapted_nis, TOL, name);
     }
 }
 

@@ -89,6 +89,10 @@ pub struct SeenPosterior {
     pub predicted: Vec<f64>,
     pub post_fit_residual: Vec<f64>,
     pub posterior_covariance: Vec<f64>,
+    /// Both again, from `post_fit_residual_and_covariance`.
+    pub together: (Vec<f64>, Vec<f64>),
+    /// `|L⁻¹ ν|²` of the view's whitened innovation.
+    pub whitened_norm2: f64,
 }
 
 /// The per-update report of a probe: its id and where in the log its hooks
@@ -208,6 +212,11 @@ impl<const SPLIT: bool, const M: usize> NoiseAdapter<f64, M> for Probe<SPLIT> {
             predicted: flat(posterior.predicted_covariance()),
             post_fit_residual: flat(&posterior.post_fit_residual()),
             posterior_covariance: flat(&posterior.posterior_covariance()),
+            together: {
+                let (residual, covariance) = posterior.post_fit_residual_and_covariance();
+                (flat(&residual), flat(&covariance))
+            },
+            whitened_norm2: posterior.whitened_innovation().norm_squared(),
         });
     }
 }

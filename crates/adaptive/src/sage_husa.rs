@@ -239,8 +239,7 @@ impl<T: Real, const M: usize> SageHusa<T, M> {
 
     /// The exponentially weighted update of `R̂` with this epoch's sample.
     fn estimate_from(&mut self, posterior: &Posterior<'_, T, M>, report: &mut SageHusaReport<T>) {
-        let e = posterior.post_fit_residual();
-        let posterior_covariance = posterior.posterior_covariance();
+        let (e, posterior_covariance) = posterior.post_fit_residual_and_covariance();
         let d = (T::one() - self.forgetting) / (T::one() - self.power);
         // One pass: (1 − d) R̂ + d (H P Hᵀ + e eᵀ). e eᵀ is exactly
         // symmetric; so is the posterior covariance, and so is the sum.

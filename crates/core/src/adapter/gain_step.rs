@@ -1,9 +1,9 @@
-use core::cell::OnceCell;
+use core::cell::{Cell, OnceCell};
 use core::fmt;
 
 use nalgebra::{SMatrix, SVector};
 
-use crate::linalg::{cholesky, mirror_lower, solve_lower};
+use crate::linalg::{add_products, cholesky, mirror_lower, solve_lower};
 use crate::Real;
 
 /// The two parts of `H P⁻ Hᵀ`: `(H Φ P Φᵀ Hᵀ, H Q Hᵀ)`.
@@ -95,6 +95,9 @@ pub struct GainStep<'a, T: Real, const M: usize> {
     factor: Option<SMatrix<T, M, M>>,
     /// The factor `noise` was given by ([`GainStep::set_noise_factor`]).
     noise_factor: Option<SMatrix<T, M, M>>,
+    /// `L⁻¹ ν` for the current innovation and factor, once asked for: the
+    /// NIS, an adapter's test and the posterior share one solve.
+    whitened: Cell<Option<SVector<T, M>>>,
 }
 
 impl<T: Real, const M: usize> GainStep<'static, T, M> {
@@ -180,6 +183,7 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
             covariance: predicted + noise,
             factor: Some(factor),
             noise_factor: None,
+            whitened: Cell::new(None),
         }
     }
 
@@ -240,7 +244,32 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
     /// `νᵀ C⁻¹ ν` for the current innovation and covariance (the NIS); `None`
     /// if `C` is not positive definite.
     pub fn mahalanobis(&self) -> Option<T> {
-        self.mahalanobis_of(&self.innovation)
+        self.whitened_innovation().map(|w| w.norm_squared())
+    }
+
+    /// The whitened innovation `L⁻¹ ν` for `C = L Lᵀ` (its squared norm is
+    /// the NIS); `None` if `C` is not positive definite. Computed once for
+    /// the current innovation and `C`, whichever adapter asks first.
+    ///
+    /// ```
+    /// use kestrel_core::adapter::GainStep;
+    /// use kestrel_core::nalgebra::{Matrix1, Vector1};
+    /// // C = 3 + 1 = 4 = 2², ν = 3: L⁻¹ ν = 1.5.
+    /// let mut step =
+    ///     GainStep::new(Vector1::new(3.0), Matrix1::new(3.0), None, Matrix1::new(1.0)).unwrap();
+    /// assert_eq!(step.whitened_innovation(), Some(Vector1::new(1.5)));
+    /// step.scale_innovation(2.0);
+    /// assert_eq!(step.whitened_innovation(), Some(Vector1::new(3.0)));
+    /// ```
+    pub fn whitened_innovation(&self) -> Option<SVector<T, M>> {
+        if let Some(w) = self.whitened.get() {
+            return Some(w);
+        }
+        let l = self.factor.as_ref()?;
+        let mut w = self.innovation;
+        solve_lower(l, &mut w);
+        self.whitened.set(Some(w));
+        Some(w)
     }
 
     /// `vᵀ C⁻¹ v` for any `v` with the current covariance.
@@ -328,19 +357,12 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
     pub fn set_noise_factor(&mut self, l: &SMatrix<T, M, M>) {
         let mut lower = *l;
         lower.fill_upper_triangle(T::zero(), 1);
-        // Column j of L Lᵀ is Σ_{k ≤ j} L_jk (column k of L): whole columns
-        // at a time. Elements (i, j) and (j, i) take the same products in
-        // the same order (L_ik = 0 for k > i), so R is exactly symmetric.
-        let columns = &lower.data.0;
+        // L Lᵀ as Σₖ (column k)(column k)ᵀ on the product kernel. Elements
+        // (i, j) and (j, i) sum the same products in the same order, so R
+        // is exactly symmetric.
         let mut r = SMatrix::<T, M, M>::zeros();
-        for (j, out) in r.data.0.iter_mut().enumerate() {
-            for column in columns.iter().take(j + 1) {
-                let f = column[j];
-                for (o, &v) in out.iter_mut().zip(column) {
-                    *o += v * f;
-                }
-            }
-        }
+        add_products(&mut r, None, [&lower], [&lower], true);
+        mirror_lower(&mut r);
         self.noise = r;
         self.noise_factor = Some(lower);
         self.noise_changed = true;
@@ -356,6 +378,7 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
 
     /// Multiplies the innovation by `s` (outlier compression).
     pub fn scale_innovation(&mut self, s: T) {
+        self.whitened.set(None);
         self.innovation *= s;
         self.innovation_scale *= s;
     }
@@ -363,6 +386,7 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
     /// Replaces the innovation (for adapters that change components
     /// differently).
     pub fn set_innovation(&mut self, innovation: SVector<T, M>) {
+        self.whitened.set(None);
         self.innovation = innovation;
     }
 
@@ -373,8 +397,51 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
     }
 
     fn refresh(&mut self) {
+        self.whitened.set(None);
         self.covariance = self.predicted_covariance() + self.noise;
         self.factor = cholesky(&self.covariance).ok();
+    }
+}
+
+#[cfg(test)]
+mod whitened_cache_tests {
+    use nalgebra::{Matrix2, Vector2};
+
+    use super::*;
+
+    /// The cached NIS equals one computed afresh after every change an
+    /// adapter can make (`mahalanobis_of` never reads the cache).
+    #[test]
+    fn every_change_of_the_innovation_or_covariance_refreshes_the_cache() {
+        let predicted = Matrix2::new(3.0, 1.0, 1.0, 2.0);
+        let parts = (predicted * 0.75, predicted * 0.25);
+        let mut step = GainStep::new(
+            Vector2::new(1.5, -0.5),
+            predicted,
+            Some(parts),
+            Matrix2::identity(),
+        )
+        .unwrap();
+        let fresh = |step: &GainStep<f64, 2>| step.mahalanobis_of(step.innovation());
+        let mut seen = [(0.0, 0.0); 5];
+        type Change = dyn Fn(&mut GainStep<f64, 2>);
+        let changes: [&Change; 5] = [
+            &|s| s.scale_innovation(0.5),
+            &|s| s.set_innovation(Vector2::new(-2.0, 1.0)),
+            &|s| s.set_noise(Matrix2::new(2.0, 0.5, 0.5, 1.0)),
+            &|s| s.set_noise_factor(&Matrix2::new(0.5, 0.0, 0.25, 2.0)),
+            &|s| s.fade(1.5),
+        ];
+        for (change, seen) in changes.iter().zip(&mut seen) {
+            let before = step.mahalanobis().unwrap();
+            assert_eq!(Some(before), fresh(&step));
+            change(&mut step);
+            let after = step.mahalanobis().unwrap();
+            assert_eq!(Some(after), fresh(&step));
+            *seen = (before, after);
+        }
+        // Each change moved the NIS, so a stale cache would have shown.
+        assert!(seen.iter().all(|(b, a)| b != a), "{seen:?}");
     }
 }
 

@@ -169,13 +169,13 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         let z_hat = model.predict(x);
         ensure_finite(&z_hat, Quantity::PredictedMeasurement)?;
         let h = model.jacobian(x);
-        // Without adapters `H` is checked through the outputs: a
+        // Outside the sequential path `H` is checked through the outputs: a
         // non-finite `Hᵢⱼ` makes `(H P Hᵀ)ᵢᵢ` non-finite (`Hᵢⱼ² Pⱼⱼ`, or
-        // `∞ · 0`), which no factorisation of `C` passes. If the update
-        // fails, `H` is checked first, as it would have been here.
+        // `∞ · 0`), which no factorisation of `C` passes, and `C` is
+        // factored before any adapter sees `H P Hᵀ`. If the update fails,
+        // `H` is checked first, as it would have been here.
         let jacobian = || ensure_finite(&h, Quantity::MeasurementJacobian);
-        let unadapted = A::IS_IDENTITY && !diagonal;
-        if !unadapted {
+        if diagonal {
             jacobian()?;
         }
         let nu = model.residual(z, &z_hat);
@@ -227,7 +227,7 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         // posterior goes into the spare buffer (no copy of the view).
         let (pending, spare) = self.cov.view_and_spare();
         let parts = || pending.split(Some(&h), &hph);
-        let factor = nominal_factor(&hph, &r)?;
+        let factor = nominal_factor(&hph, &r).or_else(|e| diagnose(|| jacobian().and(Err(e))))?;
         let mut step = if A::NEEDS_SPLIT {
             GainStep::with_lazy_split(nu, hph, &parts, r, factor)
         } else {
@@ -273,12 +273,12 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         // posterior in the spare buffer becomes current.
         *x = x_new;
         let total_fade = pending.total_fade(fade);
+        let white = done.whitened(factor);
         adapter.after_update(
-            &Posterior::new(nu_used, hph, r_used, factor),
+            &Posterior::with_whitened(nu_used, &white, hph, r_used, factor),
             &mut done.adapters,
         );
-        let adapted_nis = done.adapted_nis(factor);
-        let report = done.accepted(nu, c, adapted_nis, total_fade);
+        let report = done.accepted(nu, c, white.norm_squared(), total_fade);
         self.cov.commit_spare();
         Ok(report)
     }

@@ -291,16 +291,26 @@ impl<T: Real, const M: usize, R> AdaptedStep<'_, '_, T, M, R> {
         }
     }
 
-    /// `νᵀ C⁻¹ ν` of the innovation used, for `C = L Lᵀ`.
+    /// `L⁻¹ ν` of the innovation used, for `C = L Lᵀ`: the view's own when
+    /// `l` is the view's factor (borrowed from it, see [`factor_of`]), so
+    /// the solve an adapter's test made is not made again.
     #[inline(always)]
-    pub fn adapted_nis(&self, l: &SMatrix<T, M, M>) -> T {
+    pub fn whitened(&self, l: &SMatrix<T, M, M>) -> SVector<T, M> {
+        if let Some(own) = self.step.innovation_factor() {
+            if core::ptr::eq(own, l) {
+                if let Some(w) = self.step.whitened_innovation() {
+                    return w;
+                }
+            }
+        }
         let mut white = *self.step.innovation();
         solve_lower(l, &mut white);
-        white.norm_squared()
+        white
     }
 
     /// The report of an accepted update with innovation covariance `c`,
-    /// the [`adapted_nis`](Self::adapted_nis) and total fade `fade`.
+    /// the adapted NIS (`|L⁻¹ ν|²`, see [`whitened`](Self::whitened)) and
+    /// total fade `fade`.
     #[inline(always)]
     pub fn accepted(
         self,

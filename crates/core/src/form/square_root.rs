@@ -444,12 +444,12 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         let total_fade = self.predict_fade * if self.pending { self.fade * fade } else { fade };
         self.commit(s_new);
         let predicted = c - r_used;
+        let white = done.whitened(&sz);
         adapter.after_update(
-            &Posterior::new(&nu_used, &predicted, &r_used, &sz),
+            &Posterior::with_whitened(&nu_used, &white, &predicted, &r_used, &sz),
             &mut done.adapters,
         );
-        let adapted_nis = done.adapted_nis(&sz);
-        Ok(done.accepted(nu, c, adapted_nis, total_fade))
+        Ok(done.accepted(nu, c, white.norm_squared(), total_fade))
     }
 }
 

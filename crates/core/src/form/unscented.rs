@@ -258,11 +258,11 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         *x = x_new;
         let total_fade = self.cov.total_fade(fade);
         self.cov.commit_spare();
+        let white = done.whitened(factor);
         adapter.after_update(
-            &Posterior::new(nu_used, pzz, r_used, factor),
+            &Posterior::with_whitened(nu_used, &white, pzz, r_used, factor),
             &mut done.adapters,
         );
-        let adapted_nis = done.adapted_nis(factor);
-        Ok(done.accepted(nu, c, adapted_nis, total_fade))
+        Ok(done.accepted(nu, c, white.norm_squared(), total_fade))
     }
 }

@@ -52,6 +52,31 @@ pub fn mul_vector<T: Real, const R: usize, const C: usize>(
     SVector::from_array_storage(nalgebra::ArrayStorage([acc]))
 }
 
+/// `A L` for a lower-triangular `L` (its upper triangle is not read):
+/// column `j` is `Σ_{k ≥ j} L[k, j] A[.., k]`, held in registers. The
+/// products with the zeros above the diagonal are left out, about half of
+/// the general product's work (nalgebra's product takes them all and
+/// stores the result once per term).
+#[inline]
+pub(crate) fn mul_lower<T: Real, const R: usize, const C: usize>(
+    a: &SMatrix<T, R, C>,
+    l: &SMatrix<T, C, C>,
+) -> SMatrix<T, R, C> {
+    let mut out = SMatrix::<T, R, C>::zeros();
+    for (j, (column, out)) in l.data.0.iter().zip(&mut out.data.0).enumerate() {
+        let mut acc = [T::zero(); R];
+        // Whole columns of `A` per term: the inner loop has the fixed
+        // length `R` and vectorises.
+        for (ak, &f) in a.data.0[j..].iter().zip(&column[j..]) {
+            for (v, &x) in acc.iter_mut().zip(ak) {
+                *v += x * f;
+            }
+        }
+        *out = acc;
+    }
+    out
+}
+
 /// The factors of a product as a sequence of fixed-length columns: a
 /// fixed-size matrix, or the pairs of a sigma-point set (whose count `2N`
 /// no const generic can name).
@@ -286,6 +311,19 @@ mod tests {
         add_products(&mut out, None, [&pairs], [&pairs], false);
         let expected = gathered * gathered.transpose();
         assert!((out - expected).abs().max() < 1e-13);
+    }
+
+    #[test]
+    fn mul_lower_matches_nalgebra_and_ignores_the_upper_triangle() {
+        let a = sample::<7, 5>(0.3);
+        let full = sample::<5, 5>(1.7);
+        let mut l = full;
+        l.fill_upper_triangle(0.0, 1);
+        // What lies above the diagonal is not read.
+        let mut garbage = l;
+        garbage.fill_upper_triangle(f64::NAN, 1);
+        assert_eq!(mul_lower(&a, &garbage), a * l);
+        assert_eq!(mul_lower(&a, &l), a * l);
     }
 
     #[test]

@@ -143,26 +143,34 @@ pub(crate) fn downdate_in_place<T: Real, const N: usize>(
     Ok(())
 }
 
-/// `M` hyperbolic downdates of `s` by the columns of `u`, done pivot by
-/// pivot across the columns rather than column by column: the same
-/// arithmetic in the same order for every element (a column's pivot `k`
-/// reads column `k` of `s` after the previous columns' pivot `k`, and its
-/// own earlier pivots, exactly as one downdate after the other does), so
-/// the result is bit for bit that of [`downdate_in_place`] per column, but
-/// the `M` dependency chains of square roots and divisions overlap instead
-/// of running back to back. `u` is destroyed. `Err(())` when some pivot
-/// fails; `s` is then partly modified and must be discarded (the caller
-/// finds which column and pivot with the one-by-one downdates).
+/// `M` hyperbolic downdates of `s` by the columns of `u`, in an order that
+/// lets the chains of square roots and divisions overlap. Pivot `(k, j)`
+/// (pivot `k` of column `j`) reads column `k` of `s` as pivot `(k, j − 1)`
+/// left it and column `j` of `u` as pivot `(k − 1, j)` left it, nothing
+/// else; so the pivots of one anti-diagonal `k + j = d` are independent,
+/// and the pivots are done anti-diagonal by anti-diagonal (`N + M − 1`
+/// dependent steps instead of `N M`). Every pivot does the same arithmetic
+/// on the same values as one downdate after the other, so the result is
+/// bit for bit that of [`downdate_in_place`] per column. `u` is destroyed.
+/// `Err(())` when some pivot fails; `s` is then partly modified and must
+/// be discarded (the caller finds which column and pivot with the
+/// one-by-one downdates).
 pub(crate) fn downdate_columns_in_place<T: Real, const N: usize, const M: usize>(
     s: &mut SMatrix<T, N, N>,
     u: &mut SMatrix<T, N, M>,
 ) -> Result<(), ()> {
     let s = s.as_mut_slice();
     let u = u.as_mut_slice();
-    for k in 0..N {
-        for j in 0..M {
-            if !downdate_pivot(&mut s[k * N..k * N + N], &mut u[j * N..j * N + N], k) {
-                return Err(());
+    let diagonals = if N == 0 { 0 } else { N + M - 1 };
+    for d in 0..diagonals {
+        // Columns j ≤ d with pivot k = d − j inside the factor (k < N); a
+        // constant trip count with the bounds as conditions, so it unrolls.
+        for (j, column) in u.chunks_exact_mut(N).enumerate() {
+            if j <= d && d - j < N {
+                let k = d - j;
+                if !downdate_pivot(&mut s[k * N..k * N + N], column, k) {
+                    return Err(());
+                }
             }
         }
     }
@@ -286,6 +294,38 @@ mod tests {
             );
         }
     }
+    /// The across-columns downdate against one downdate per column, for a
+    /// factor of `N` states and `M` columns.
+    fn across_equals_one_by_one<const N: usize, const M: usize>() {
+        let a =
+            nalgebra::SMatrix::<f64, N, N>::from_fn(|i, j| ((i * 3 + j * 5) as f64 * 0.7).sin());
+        let p = a * a.transpose() + nalgebra::SMatrix::identity() * (2.0 * M as f64);
+        let s0 = cholesky(&p).unwrap();
+        let u =
+            nalgebra::SMatrix::<f64, N, M>::from_fn(|i, j| ((i + 4 * j) as f64 * 0.9).cos() * 0.4);
+        let mut one_by_one = s0;
+        for j in 0..M {
+            let mut col = u.column(j).into_owned();
+            downdate_in_place(&mut one_by_one, &mut col).unwrap();
+        }
+        let mut across = s0;
+        let mut work = u;
+        downdate_columns_in_place(&mut across, &mut work).unwrap();
+        assert_eq!(across, one_by_one, "{N} states, {M} columns");
+    }
+
+    #[test]
+    fn downdates_across_columns_equal_one_after_the_other_in_every_shape() {
+        // More columns than states, as many, fewer, and the edge sizes.
+        across_equals_one_by_one::<1, 1>();
+        across_equals_one_by_one::<1, 3>();
+        across_equals_one_by_one::<3, 1>();
+        across_equals_one_by_one::<3, 5>();
+        across_equals_one_by_one::<4, 4>();
+        across_equals_one_by_one::<9, 2>();
+        across_equals_one_by_one::<15, 6>();
+    }
+
     #[test]
     fn downdates_across_columns_equal_one_after_the_other_bit_for_bit() {
         // A 7-state factor, three columns to remove (one with zeros, which
