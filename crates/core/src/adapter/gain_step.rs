@@ -3,7 +3,7 @@ use core::fmt;
 
 use nalgebra::{SMatrix, SVector};
 
-use crate::linalg::{cholesky, mirror_lower, solve_lower};
+use crate::linalg::{cholesky, lower_times_transpose, mirror_lower, solve_lower};
 use crate::Real;
 
 /// The two parts of `H P⁻ Hᵀ`: `(H Φ P Φᵀ Hᵀ, H Q Hᵀ)`.
@@ -357,19 +357,7 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
     pub fn set_noise_factor(&mut self, l: &SMatrix<T, M, M>) {
         let mut lower = *l;
         lower.fill_upper_triangle(T::zero(), 1);
-        // Column j of L Lᵀ is Σ_{k ≤ j} L_jk (column k of L): whole columns
-        // at a time. Elements (i, j) and (j, i) take the same products in
-        // the same order (L_ik = 0 for k > i), so R is exactly symmetric.
-        let columns = &lower.data.0;
-        let mut r = SMatrix::<T, M, M>::zeros();
-        for (j, out) in r.data.0.iter_mut().enumerate() {
-            for column in columns.iter().take(j + 1) {
-                let f = column[j];
-                for (o, &v) in out.iter_mut().zip(column) {
-                    *o += v * f;
-                }
-            }
-        }
+        let r = lower_times_transpose(&lower);
         self.noise = r;
         self.noise_factor = Some(lower);
         self.noise_changed = true;

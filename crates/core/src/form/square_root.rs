@@ -9,8 +9,8 @@ use crate::contract::check_covariance;
 use crate::error::ensure_finite;
 use crate::linalg::{
     add_columns, add_columns_by_rows, cholesky_semidefinite, downdate_columns_in_place,
-    downdate_in_place, mirror_lower, solve_lower, solve_lower_transpose, update_in_place,
-    weighted_rank_one_in_place,
+    downdate_in_place, lower_times_transpose, mirror_lower, mul_lower, mul_vector, solve_lower,
+    solve_lower_transpose, update_in_place, weighted_rank_one_in_place,
 };
 use crate::sigma::{self, MeasuredSigma, MerweParams, Pairs, SigmaWeights};
 use crate::{
@@ -373,8 +373,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         let prior = self.current_factor(&mut merged);
         let measured = sigma::measure(x, prior, &w, model, space)?;
         let sz = self.innovation_factor(&measured, &sr)?;
-        let mut c = sz * sz.transpose();
-        mirror_lower(&mut c);
+        let c = lower_times_transpose(&sz);
         let nu = model.residual(z, &measured.z_hat);
         ensure_finite(&nu, Quantity::Measurement)?;
 
@@ -436,8 +435,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         } else {
             (prior, measured, sz)
         };
-        let mut c = sz * sz.transpose();
-        mirror_lower(&mut c);
+        let c = lower_times_transpose(&sz);
         let (s_new, x_new) = Self::downdated(&prior, &measured.cross, &sz, &nu_used, x, space)?;
 
         *x = x_new;
@@ -470,9 +468,9 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
         solve_lower(sz, &mut kt);
         solve_lower_transpose(sz, &mut kt);
         let k = kt.transpose();
-        let x_new = space.add(x, &(k * nu_used));
+        let x_new = space.add(x, &mul_vector(&k, nu_used));
         ensure_finite(&x_new, Quantity::UpdatedState)?;
-        let u = k * sz;
+        let u = mul_lower(&k, sz);
         let mut s_new = *prior;
         let mut work = u;
         if downdate_columns_in_place(&mut s_new, &mut work).is_err() {

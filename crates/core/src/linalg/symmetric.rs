@@ -23,6 +23,28 @@ pub fn mirror_lower<T: Real, const N: usize>(p: &mut SMatrix<T, N, N>) {
     }
 }
 
+/// `L Lᵀ` for a lower-triangular `L` (zeros above the diagonal): column `j`
+/// as `Σ_{k ≤ j} L_jk L[.., k]`, whole columns at a time, without the
+/// products with the zeros past `k = j`. Elements `(i, j)` and `(j, i)` take
+/// the same products in the same order (`L_ik = 0` for `k > i`), so the
+/// result is exactly symmetric.
+#[inline]
+pub(crate) fn lower_times_transpose<T: Real, const M: usize>(
+    l: &SMatrix<T, M, M>,
+) -> SMatrix<T, M, M> {
+    let columns = &l.data.0;
+    let mut r = SMatrix::<T, M, M>::zeros();
+    for (j, out) in r.data.0.iter_mut().enumerate() {
+        for column in columns.iter().take(j + 1) {
+            let f = column[j];
+            for (o, &v) in out.iter_mut().zip(column) {
+                *o += v * f;
+            }
+        }
+    }
+    r
+}
+
 /// `A P Aᵀ` for a symmetric `P`, computing one triangle (the product `A P`
 /// in full, reading `P` as `Pᵀ`, then the lower half of `(A P) Aᵀ`) and
 /// mirroring it, so the result is exactly symmetric.
@@ -219,6 +241,19 @@ mod tests {
     use super::*;
     use approx::assert_relative_eq;
     use nalgebra::{Matrix2, Matrix2x3, Matrix3, Matrix3x2};
+
+    #[test]
+    fn lower_times_transpose_is_l_lt_and_exactly_symmetric() {
+        let mut l =
+            nalgebra::SMatrix::<f64, 5, 5>::from_fn(|i, j| ((i * 7 + j * 3) as f64 * 0.37).sin());
+        l.fill_upper_triangle(0.0, 1);
+        let r = lower_times_transpose(&l);
+        assert_relative_eq!(r, l * l.transpose(), epsilon = 1e-14);
+        assert_eq!(r, r.transpose());
+        // Hand-computed: L = [2 0; 1 3] gives [4 2; 2 10].
+        let r2 = lower_times_transpose(&Matrix2::new(2.0, 0.0, 1.0, 3.0));
+        assert_eq!(r2, Matrix2::new(4.0, 2.0, 2.0, 10.0));
+    }
 
     #[test]
     fn sandwich_matches_naive() {
