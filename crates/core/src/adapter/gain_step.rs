@@ -357,8 +357,7 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
     pub fn set_noise_factor(&mut self, l: &SMatrix<T, M, M>) {
         let mut lower = *l;
         lower.fill_upper_triangle(T::zero(), 1);
-        let r = lower_times_transpose(&lower);
-        self.noise = r;
+        self.noise = lower_times_transpose(&lower);
         self.noise_factor = Some(lower);
         self.noise_changed = true;
         self.refresh();

@@ -49,7 +49,7 @@ fn cholesky_by<T: Real, const N: usize>(
     let rel = epsilon::<T>() * lit::<T>(N as f64);
     let mut l = *a;
     factor(&mut l, small, |k, d, original, _column| {
-        if d.is_finite() && d > rel * original.abs() && d > T::zero() {
+        if regular_pivot(d, original, rel) {
             Ok(Some(d.sqrt()))
         } else {
             Err(NotPositiveDefinite { index: k })
@@ -126,8 +126,18 @@ fn semidefinite_by<T: Real, const N: usize>(
 }
 
 /// The size from which [`factor`] takes four columns per pass; below it,
-/// the unrolled elimination ([`factor_small`]).
-const UNROLL_FROM: usize = 10;
+/// the unrolled elimination ([`factor_small`], also used by
+/// [`Ldl`](super::Ldl)).
+pub(super) const UNROLL_FROM: usize = 10;
+
+/// The test of a positive definite factorisation's pivot `d`: finite,
+/// positive, and above `rel` (`N·ε`) times its matrix's original diagonal
+/// element `original` (below it the matrix is singular to working
+/// precision). NaN fails.
+#[inline(always)]
+pub(super) fn regular_pivot<T: Real>(d: T, original: T, rel: T) -> bool {
+    d.is_finite() && d > rel * original.abs() && d > T::zero()
+}
 
 /// Left-looking column Cholesky: column `j` of the working copy receives
 /// `−l_jk · L[j.., k]` for every finished column `k < j`, each as one

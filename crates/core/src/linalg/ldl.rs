@@ -1,13 +1,9 @@
 use nalgebra::{SMatrix, SVector};
 
-use super::cholesky::eliminate_unrolled;
+use super::cholesky::{eliminate_unrolled, regular_pivot, UNROLL_FROM};
 use super::NotPositiveDefinite;
 use crate::real::{epsilon, lit};
 use crate::Real;
-
-/// The order below which [`Ldl::new`] takes every loop with a constant trip
-/// count, so that it unrolls completely.
-const UNROLLED_BELOW: usize = 10;
 
 /// The square-root-free factorisation `A = L D Lᵀ` of a symmetric positive
 /// definite matrix (`L` unit lower triangular, `D` diagonal), for solving
@@ -36,7 +32,7 @@ impl<T: Real, const M: usize> Ldl<T, M> {
         if M == 2 {
             return Self::two_by_two(a, rel);
         }
-        Self::by(a, M < UNROLLED_BELOW)
+        Self::by(a, M < UNROLL_FROM)
     }
 
     /// [`new`](Self::new) above two states, by the unrolled (`small`) or
@@ -51,7 +47,7 @@ impl<T: Real, const M: usize> Ldl<T, M> {
             // columns unscaled), then `l_ij = u_ij / d_j`.
             let original: [T; M] = core::array::from_fn(|j| a[(j, j)]);
             let (inv_d, _) = eliminate_unrolled(s, &original, |j, pivot, a_jj, _| {
-                if pivot.is_finite() && pivot > rel * a_jj.abs() && pivot > T::zero() {
+                if regular_pivot(pivot, a_jj, rel) {
                     Ok(Some(pivot))
                 } else {
                     Err(NotPositiveDefinite { index: j })
@@ -80,7 +76,7 @@ impl<T: Real, const M: usize> Ldl<T, M> {
                 }
             }
             let pivot = col[0];
-            if !(pivot.is_finite() && pivot > rel * a[(j, j)].abs() && pivot > T::zero()) {
+            if !regular_pivot(pivot, a[(j, j)], rel) {
                 return Err(NotPositiveDefinite { index: j });
             }
             d[j] = pivot;
@@ -104,10 +100,10 @@ impl<T: Real, const M: usize> Ldl<T, M> {
         let inv_d1 = a11.recip();
         let inv_d2 = a11 / det;
         let d2 = det * inv_d1;
-        if !(a11.is_finite() && a11 > rel * a11.abs() && a11 > T::zero()) {
+        if !regular_pivot(a11, a11, rel) {
             return Err(NotPositiveDefinite { index: 0 });
         }
-        if !(d2.is_finite() && d2 > rel * a22.abs() && d2 > T::zero()) {
+        if !regular_pivot(d2, a22, rel) {
             return Err(NotPositiveDefinite { index: 1 });
         }
         let mut l = SMatrix::zeros();
@@ -192,7 +188,7 @@ mod tests {
         assert_relative_eq!(f.quadratic_form(&v), direct, epsilon = 1e-13);
     }
 
-    /// The unrolled elimination used below `UNROLLED_BELOW` equals the
+    /// The unrolled elimination used below `UNROLL_FROM` equals the
     /// column loop to rounding and fails at the same pivot.
     #[test]
     fn the_unrolled_elimination_equals_the_column_loop() {
