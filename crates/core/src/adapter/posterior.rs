@@ -95,6 +95,15 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
 
     /// The whitened innovation `L⁻¹ ν` for `C = L Lᵀ`; its squared norm is
     /// the NIS of the innovation used.
+    ///
+    /// ```
+    /// use kestrel_core::adapter::Posterior;
+    /// use kestrel_core::nalgebra::{Matrix1, Vector1};
+    /// // C = 3 + 1 = 4 with factor 2; ν = 2: L⁻¹ ν = 1, NIS = 1.
+    /// let (nu, hp, r, l) = (Vector1::new(2.0), Matrix1::new(3.0), Matrix1::new(1.0), Matrix1::new(2.0));
+    /// let post = Posterior::new(&nu, &hp, &r, &l);
+    /// assert_eq!(post.whitened_innovation()[0], 1.0);
+    /// ```
     pub fn whitened_innovation(&self) -> &SVector<T, M> {
         &self.whitened
     }
