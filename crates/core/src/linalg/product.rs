@@ -164,7 +164,7 @@ fn columns<T, const R: usize, const C: usize, X, Y, const L: usize>(
 
 /// `MR × NR` tiles held in registers over the whole inner dimension; the
 /// columns left over at the edge (`C mod NR`) get tiles of exactly their
-/// size, and so do the rows (`R mod MR`) but in `f32` (see
+/// size, and so do the rows left over (`R mod MR`), except in `f32` (see
 /// [`column_block`]).
 #[inline(always)]
 fn tiled<T, const R: usize, const C: usize, X, Y, const L: usize>(
