@@ -47,11 +47,19 @@ pub fn mul_vector<T: Real, const R: usize, const C: usize>(
     // needs `xᵀ` copied and cost the 2-state KF step 3 % (measured).
     let mut acc = [T::zero(); R];
     for (column, &f) in a.data.0.iter().zip(x.as_slice()) {
-        for (v, &ak) in acc.iter_mut().zip(column) {
-            *v += ak * f;
-        }
+        add_scaled(&mut acc, column, f);
     }
     SVector::from_array_storage(nalgebra::ArrayStorage([acc]))
+}
+
+/// `acc += f · column` for a fixed-length column: the loop every column
+/// product here is built from (fixed length, so it vectorises with the
+/// accumulator in registers).
+#[inline(always)]
+pub(crate) fn add_scaled<T: Real, const R: usize>(acc: &mut [T; R], column: &[T; R], f: T) {
+    for (v, &c) in acc.iter_mut().zip(column) {
+        *v += c * f;
+    }
 }
 
 /// `A L` for a lower-triangular `L` (its upper triangle is not read):
@@ -70,9 +78,7 @@ pub(crate) fn mul_lower<T: Real, const R: usize, const C: usize>(
         // Whole columns of `A` per term: the inner loop has the fixed
         // length `R` and vectorises.
         for (ak, &f) in a.data.0[j..].iter().zip(&column[j..]) {
-            for (v, &x) in acc.iter_mut().zip(ak) {
-                *v += x * f;
-            }
+            add_scaled(&mut acc, ak, f);
         }
         *out = acc;
     }
@@ -152,10 +158,7 @@ fn columns<T, const R: usize, const C: usize, X, Y, const L: usize>(
         let mut acc = init.map_or([T::zero(); R], |p| p.data.0[j]);
         for (xt, yt) in x.iter().zip(&y) {
             for k in 0..xt.count().min(yt.count()) {
-                let f = yt.column(k)[j];
-                for (a, &xv) in acc.iter_mut().zip(xt.column(k)) {
-                    *a += xv * f;
-                }
+                add_scaled(&mut acc, xt.column(k), yt.column(k)[j]);
             }
         }
         out.data.0[j] = acc;

@@ -294,6 +294,7 @@ mod tests {
             );
         }
     }
+
     /// The across-columns downdate against one downdate per column, for a
     /// factor of `N` states and `M` columns.
     fn across_equals_one_by_one<const N: usize, const M: usize>() {

@@ -1,6 +1,6 @@
 use nalgebra::{SMatrix, SVector};
 
-use super::product::{add_products, mul_lower};
+use super::product::{add_products, add_scaled, mul_lower};
 use crate::Real;
 
 /// Copies the lower triangle of `p` onto its upper triangle, making `p`
@@ -36,10 +36,7 @@ pub(crate) fn lower_times_transpose<T: Real, const M: usize>(
     let mut r = SMatrix::<T, M, M>::zeros();
     for (j, out) in r.data.0.iter_mut().enumerate() {
         for column in columns.iter().take(j + 1) {
-            let f = column[j];
-            for (o, &v) in out.iter_mut().zip(column) {
-                *o += v * f;
-            }
+            add_scaled(out, column, column[j]);
         }
     }
     r
