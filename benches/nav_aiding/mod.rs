@@ -3,7 +3,7 @@
 //! before timing, so only the engine is timed).
 
 // The IMU, antenna and receiver of the nav crate's aiding tests.
-#[path = "../../crates/nav/tests/aiding/tactical.rs"]
+#[path = "../../crates/nav/tests/suite/aiding/tactical.rs"]
 mod tactical;
 
 use std::hint::black_box;

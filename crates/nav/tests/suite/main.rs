@@ -1,0 +1,33 @@
+//! The navigation crate's integration tests, one binary: one link, and the shared
+//! filter code instantiated once instead of once per file.
+
+#[macro_use]
+mod aiding;
+#[macro_use]
+mod common_ins;
+
+// The allocation tests count the heap calls of their own thread only, so
+// one counting allocator serves every module.
+#[global_allocator]
+static ALLOCATOR: kestrel_testkit::CountingAllocator = kestrel_testkit::CountingAllocator;
+
+mod attitude;
+mod claims_held_out;
+mod coning_sculling;
+mod earth;
+mod engine;
+mod engine_no_alloc;
+mod error_model;
+mod experiment;
+mod ins_gnss;
+mod measurement_jacobians;
+mod mechanisation_accuracy;
+mod odometer_faults;
+mod reproduce_001_002;
+mod schuler;
+mod sim_multipath;
+mod sim_scenarios;
+mod sim_sensors;
+mod sim_trajectory;
+mod sins_dr;
+mod stationary;
