@@ -301,7 +301,7 @@ impl<T: Real, const N: usize, const L: usize, Locals: LocalSet<T, N, L>>
         let reset = self.sharing.policy() != Policy::NoReset;
         let mut shares = self.sharing.distribute(&admitted, &edops)?;
         if reset {
-            for (share, _) in shares.iter_mut().zip(&admitted).filter(|(_, &a)| !a) {
+            for (share, _) in shares.iter_mut().zip(&admitted).filter(|&(_, &a)| !a) {
                 *share = T::one();
             }
             // Every reset covariance must be finite before any local changes.

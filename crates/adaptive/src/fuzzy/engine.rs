@@ -89,16 +89,16 @@ impl<T: Real, const I: usize, const S: usize, const O: usize, const R: usize>
         }
         for rule in &rules {
             for (term, input) in rule.antecedent().iter().zip(&inputs) {
-                if let Term::Is(k) = *term {
-                    if k >= input.len() {
-                        return Err(bad);
-                    }
-                }
-            }
-            if let Consequent::Set(k) = rule.consequent() {
-                if k >= O {
+                if let Term::Is(k) = *term
+                    && k >= input.len()
+                {
                     return Err(bad);
                 }
+            }
+            if let Consequent::Set(k) = rule.consequent()
+                && k >= O
+            {
+                return Err(bad);
             }
         }
         Ok(Self {

@@ -169,12 +169,12 @@ fn execute(
     args: &MonteCarloArgs,
     study_runs: usize,
 ) -> Result<Vec<StudyRow>, CliError> {
-    if let Some(d) = args.duration {
-        if !(d.is_finite() && d > 0.0) {
-            return Err(CliError::Failed(format!(
-                "--duration must be a positive number of seconds, got {d}"
-            )));
-        }
+    if let Some(d) = args.duration
+        && !(d.is_finite() && d > 0.0)
+    {
+        return Err(CliError::Failed(format!(
+            "--duration must be a positive number of seconds, got {d}"
+        )));
     }
     let plan = MonteCarloPlan {
         runs: args.runs,

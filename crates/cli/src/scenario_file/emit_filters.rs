@@ -32,14 +32,14 @@ pub(super) fn filter(w: &mut Writer, s: &Scenario) {
             "odometer scale-error correlation time, s",
         );
     }
-    if let ErrorModelKind::Ins21 { scale_tau } = f.error_model {
-        if scale_tau.is_finite() {
-            w.num(
-                "scale_tau_s",
-                scale_tau,
-                "IMU scale-factor correlation time, s (omit: random constants)",
-            );
-        }
+    if let ErrorModelKind::Ins21 { scale_tau } = f.error_model
+        && scale_tau.is_finite()
+    {
+        w.num(
+            "scale_tau_s",
+            scale_tau,
+            "IMU scale-factor correlation time, s (omit: random constants)",
+        );
     }
     let m = match f.measurement {
         MeasurementKind::GnssPositionVelocity => "gnss-position-velocity",

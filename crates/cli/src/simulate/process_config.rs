@@ -148,12 +148,12 @@ pub fn process_config(scenario: &Scenario, start: &NavState, kind: &FilterKind) 
         f(inv(m.accel_markov_sigma, ug(1.0), ug))
     );
     let _ = writeln!(w, "accel_markov_tau = {}", f(m.accel_markov_tau));
-    if let ErrorModelKind::Ins21 { scale_tau } = fs.error_model {
-        if scale_tau.is_finite() {
-            let _ = writeln!(w, "scale_tau = {}", f(scale_tau));
-            let _ = writeln!(w, "gyro_scale_sigma = {}", f(m.gyro_scale * 1e6));
-            let _ = writeln!(w, "accel_scale_sigma = {}", f(m.accel_scale * 1e6));
-        }
+    if let ErrorModelKind::Ins21 { scale_tau } = fs.error_model
+        && scale_tau.is_finite()
+    {
+        let _ = writeln!(w, "scale_tau = {}", f(scale_tau));
+        let _ = writeln!(w, "gyro_scale_sigma = {}", f(m.gyro_scale * 1e6));
+        let _ = writeln!(w, "accel_scale_sigma = {}", f(m.accel_scale * 1e6));
     }
     let _ = writeln!(w);
 

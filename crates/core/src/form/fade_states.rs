@@ -160,7 +160,7 @@ impl<const N: usize> FadeStates<N> {
         let mut s = *s;
         if lambda != T::one() {
             let root = lambda.sqrt();
-            for (i, _) in self.mask.iter().enumerate().filter(|(_, &m)| m) {
+            for (i, _) in self.mask.iter().enumerate().filter(|&(_, &m)| m) {
                 s.row_mut(i).scale_mut(root);
             }
         }
@@ -170,7 +170,7 @@ impl<const N: usize> FadeStates<N> {
     /// `v ← D v` (only for a block selection; callers handle `all` by a
     /// scalar weight).
     pub(crate) fn scale_vector<T: Real>(&self, v: &mut SVector<T, N>, root: T) {
-        for (i, _) in self.mask.iter().enumerate().filter(|(_, &m)| m) {
+        for (i, _) in self.mask.iter().enumerate().filter(|&(_, &m)| m) {
             v[i] *= root;
         }
     }

@@ -296,12 +296,11 @@ impl<T: Real, const M: usize, R> AdaptedStep<'_, '_, T, M, R> {
     /// the solve an adapter's test made is not made again.
     #[inline(always)]
     pub fn whitened(&self, l: &SMatrix<T, M, M>) -> SVector<T, M> {
-        if let Some(own) = self.step.innovation_factor() {
-            if core::ptr::eq(own, l) {
-                if let Some(w) = self.step.whitened_innovation() {
-                    return w;
-                }
-            }
+        if let Some(own) = self.step.innovation_factor()
+            && core::ptr::eq(own, l)
+            && let Some(w) = self.step.whitened_innovation()
+        {
+            return w;
         }
         let mut white = *self.step.innovation();
         solve_lower(l, &mut white);

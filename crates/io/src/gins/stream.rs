@@ -108,11 +108,11 @@ impl<R: BufRead> Stream<R> {
     /// (604 800 s added from there on).
     pub(crate) fn advance_seconds(&mut self, f: &Fields) -> Result<f64, InputError> {
         let mut time = f.get(0) + self.week_offset;
-        if let Some((t0, _)) = self.previous {
-            if time < t0 - 0.5 * WEEK {
-                self.week_offset += WEEK;
-                time += WEEK;
-            }
+        if let Some((t0, _)) = self.previous
+            && time < t0 - 0.5 * WEEK
+        {
+            self.week_offset += WEEK;
+            time += WEEK;
         }
         self.advance(time, f).map(|_| time).map_err(|(t0, l0)| {
             self.at(

@@ -192,10 +192,10 @@ impl GnssSource {
     }
 
     fn fill(&mut self) -> Result<(), InputError> {
-        if self.ahead.is_none() {
-            if let Some(fix) = self.reader.next().transpose()? {
-                self.ahead = Some((fix, self.reader.last_line().unwrap_or(0)));
-            }
+        if self.ahead.is_none()
+            && let Some(fix) = self.reader.next().transpose()?
+        {
+            self.ahead = Some((fix, self.reader.last_line().unwrap_or(0)));
         }
         Ok(())
     }
@@ -359,16 +359,16 @@ where
     let mut previous = (job.start, None);
     let mut timing = job.start_timing()?;
     let mut current = job.next_imu()?;
-    if let (Some(_), Some(r), None) = (job.odometer_rate, &current, &job.odometer_file) {
-        if r.odometer.is_none() {
-            return Err(InputError::at(
-                job.imu.path(),
-                r.line,
-                8,
-                "expected an 8th column (odometer speed, m/s): --odo is given",
-            )
-            .into());
-        }
+    if let (Some(_), Some(r), None) = (job.odometer_rate, &current, &job.odometer_file)
+        && r.odometer.is_none()
+    {
+        return Err(InputError::at(
+            job.imu.path(),
+            r.line,
+            8,
+            "expected an 8th column (odometer speed, m/s): --odo is given",
+        )
+        .into());
     }
     let imu_path = job.imu.path().to_path_buf();
     let outcome = loop {
@@ -458,25 +458,26 @@ where
         None => false,
     };
     job.constraints.counts.standstill_samples += usize::from(standing);
-    if let Some((_, z, schedule)) = job.constraints.zupt.as_mut() {
-        if standing && schedule.due(t, z.rate) {
-            let (v_std, w_std) = (z.velocity_std, z.angular_rate_std);
+    if let Some((_, z, schedule)) = job.constraints.zupt.as_mut()
+        && standing
+        && schedule.due(t, z.rate)
+    {
+        let (v_std, w_std) = (z.velocity_std, z.angular_rate_std);
+        let ins = engine.ins_context(t);
+        let m = ZeroVelocity::new(v_std).measurement(engine.system(), &ins);
+        engine
+            .apply_with(&m, &mut ())
+            .map_err(|e| diverged(e, Step::ZeroVelocity, format!("IMU line {}", imu_line())))?;
+        record_epoch(job, engine)?;
+        job.constraints.counts.zero_velocity += 1;
+        if w_std > 0.0 {
             let ins = engine.ins_context(t);
-            let m = ZeroVelocity::new(v_std).measurement(engine.system(), &ins);
-            engine
-                .apply_with(&m, &mut ())
-                .map_err(|e| diverged(e, Step::ZeroVelocity, format!("IMU line {}", imu_line())))?;
+            let m = ZeroAngularRate::new(w_std).measurement(engine.system(), &ins);
+            engine.apply_with(&m, &mut ()).map_err(|e| {
+                diverged(e, Step::ZeroAngularRate, format!("IMU line {}", imu_line()))
+            })?;
             record_epoch(job, engine)?;
-            job.constraints.counts.zero_velocity += 1;
-            if w_std > 0.0 {
-                let ins = engine.ins_context(t);
-                let m = ZeroAngularRate::new(w_std).measurement(engine.system(), &ins);
-                engine.apply_with(&m, &mut ()).map_err(|e| {
-                    diverged(e, Step::ZeroAngularRate, format!("IMU line {}", imu_line()))
-                })?;
-                record_epoch(job, engine)?;
-                job.constraints.counts.zero_angular_rate += 1;
-            }
+            job.constraints.counts.zero_angular_rate += 1;
         }
     }
     if let Some((model, rate, schedule)) = job.constraints.nhc.as_mut() {
@@ -507,17 +508,17 @@ where
         Some(f) => f.speed_at(t)?.map(|(speed, line)| (speed, Some(line))),
         None => sample.odometer.map(|speed| (speed, None)),
     };
-    if let (Some(rate), Some((speed, line))) = (job.odometer_rate, speed) {
-        if schedule.due(t, rate) {
-            let reading = OdometerReading::new(t, speed);
-            let input = || match (line, job.odometer_file.as_ref()) {
-                (Some(l), Some(f)) => format!("odometer line {}:{l}", f.path().display()),
-                _ => format!("odometer speed of IMU line {}", imu_line()),
-            };
-            update =
-                Some(odometer(engine, &reading).map_err(|e| diverged(e, Step::Odometer, input()))?);
-            record_epoch(job, engine)?;
-        }
+    if let (Some(rate), Some((speed, line))) = (job.odometer_rate, speed)
+        && schedule.due(t, rate)
+    {
+        let reading = OdometerReading::new(t, speed);
+        let input = || match (line, job.odometer_file.as_ref()) {
+            (Some(l), Some(f)) => format!("odometer line {}:{l}", f.path().display()),
+            _ => format!("odometer speed of IMU line {}", imu_line()),
+        };
+        update =
+            Some(odometer(engine, &reading).map_err(|e| diverged(e, Step::Odometer, input()))?);
+        record_epoch(job, engine)?;
     }
     // The navigation block of the error covariance, for the NEES and the
     // σ envelopes (only with a truth: a copy of P per sample otherwise
@@ -541,11 +542,12 @@ where
     }
     // A covariance epoch (propagated or updated at this sample): the
     // filter's estimates and σ, at the output interval.
-    if let Some(states) = job.states.as_mut() {
-        if engine.pending_interval() == 0.0 && states.due(t) {
-            let sigma = engine.std_devs();
-            states.row(t, engine.corrections(), sigma.iter().copied())?;
-        }
+    if let Some(states) = job.states.as_mut()
+        && engine.pending_interval() == 0.0
+        && states.due(t)
+    {
+        let sigma = engine.std_devs();
+        states.row(t, engine.corrections(), sigma.iter().copied())?;
     }
     Ok(following)
 }

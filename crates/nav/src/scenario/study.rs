@@ -164,11 +164,11 @@ fn variants_002(base: &Scenario) -> Vec<Variant> {
     if let Some(g) = uncapped.gnss.as_mut() {
         for o in &mut g.outliers {
             // The short bursts are the first multipath process.
-            if let OutlierKind::Multipath(b) = &mut o.kind {
-                if b.rise == 0.0 {
-                    b.position *= 2.0;
-                    b.velocity_bias *= 2.0;
-                }
+            if let OutlierKind::Multipath(b) = &mut o.kind
+                && b.rise == 0.0
+            {
+                b.position *= 2.0;
+                b.velocity_bias *= 2.0;
             }
         }
     }

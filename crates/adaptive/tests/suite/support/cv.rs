@@ -150,10 +150,10 @@ pub fn stream(spec: &Spec) -> Stream {
     };
     for k in 0..spec.steps {
         x = phi() * x + lq * normal::<N>(&mut rng);
-        if let Some((at, by)) = spec.jump {
-            if at == k {
-                x += by;
-            }
+        if let Some((at, by)) = spec.jump
+            && at == k
+        {
+            x += by;
         }
         let clean = h() * x + lr * normal::<M>(&mut rng);
         let is_outlier = spec.outlier_rate > 0.0 && rng.random_bool(spec.outlier_rate);
