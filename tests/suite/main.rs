@@ -1,5 +1,5 @@
-//! The umbrella crate's integration tests, one binary (one link and one
-//! instantiation of the shared filter code instead of one per file).
+//! The umbrella crate's integration tests as one binary: the code the files
+//! share is compiled and linked once, not once per file.
 
 #[macro_use]
 mod support;

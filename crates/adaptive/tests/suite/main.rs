@@ -1,7 +1,6 @@
-//! The adapters' integration tests, one binary: one link, and the shared
-//! filter code instantiated once instead of once per file.
+//! The adapters' integration tests as one binary: the code the files share is
+//! compiled and linked once, not once per file.
 
-#[macro_use]
 mod federated_common;
 #[macro_use]
 mod support;

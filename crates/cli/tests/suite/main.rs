@@ -1,7 +1,6 @@
-//! The command-line tool's integration tests, one binary: one link, and the shared
-//! filter code instantiated once instead of once per file.
+//! The command-line tool's integration tests as one binary: the code the files
+//! share is compiled and linked once, not once per file.
 
-#[macro_use]
 mod support;
 
 mod alignment;

@@ -1,5 +1,5 @@
-//! The I/O crate's integration tests, one binary: one link, and the shared
-//! filter code instantiated once instead of once per file.
+//! The I/O crate's integration tests as one binary: the code the files share is
+//! compiled and linked once, not once per file.
 
 mod config;
 mod gins;

@@ -1,9 +1,7 @@
-//! The navigation crate's integration tests, one binary: one link, and the shared
-//! filter code instantiated once instead of once per file.
+//! The navigation crate's integration tests as one binary: the code the files
+//! share is compiled and linked once, not once per file.
 
-#[macro_use]
 mod aiding;
-#[macro_use]
 mod common_ins;
 
 // The allocation tests count the heap calls of their own thread only, so
