@@ -9,8 +9,10 @@
 //! ```
 //!
 //! The difference of the two totals ("Collected") divided by 2000 is the
-//! count per step. Filters: `kf`, `kf_diag`, `kf_improved` (paper 000's
-//! `ImprovedAdaptive`), `ukf`, `srukf`, `nalgebra`,
+//! count per step. Filters: `kf`, `kf_nis` (the same steps, the caller
+//! reading only the report's NIS in place instead of moving the report),
+//! `kf_diag`, `kf_improved` (paper 000's `ImprovedAdaptive`), `ukf`, `srukf`,
+//! `nalgebra`,
 //! `adskalman`, `kf_f32`, `ukf_f32`, `srukf_f32` (f32 at N = 15 only), and
 //! `kf_cycle`, `kf_improved_cycle`: the plain and the `ImprovedAdaptive` EKF
 //! fed the simulated measurement cycle of the `adapters` benchmark (so the
@@ -35,8 +37,10 @@ fn model<T: Real, const N: usize, const M: usize>() -> Model<T, N, M> {
     Model::<f64, N, M>::generate(0x6b65_7374_7265_6c00 + N as u64).to()
 }
 
-/// `steps` predict + update steps of `f`.
-fn run<T, const N: usize, const M: usize, F>(
+/// `steps` predict + update steps of `f`, handing `black_box` the whole
+/// report (`WHOLE`, as the `step` benchmark does) or only its NIS (which the
+/// compiler then reads where the update left it: no move of the report).
+fn run<T, const N: usize, const M: usize, F, const WHOLE: bool>(
     mut f: Filter<T, N, F>,
     m: &Model<T, N, M>,
     r: SMatrix<T, M, M>,
@@ -49,7 +53,12 @@ fn run<T, const N: usize, const M: usize, F>(
     let measurement = LinearMeasurement::new(m.h, r);
     for _ in 0..steps {
         f.predict(&process, T::one()).expect("predict");
-        black_box(f.update(&measurement, black_box(&m.z)).expect("update"));
+        let report = f.update(&measurement, black_box(&m.z)).expect("update");
+        if WHOLE {
+            black_box(report);
+        } else {
+            black_box(report.nis);
+        }
     }
 }
 
@@ -88,8 +97,9 @@ where
 {
     let m = model::<T, N, M>();
     match filter {
-        "kf" => run(Ekf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
-        "kf_diag" => run(Ekf::new(m.x0, m.p0).unwrap(), &m, m.r_diag, steps),
+        "kf" => run::<_, N, M, _, true>(Ekf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
+        "kf_nis" => run::<_, N, M, _, false>(Ekf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
+        "kf_diag" => run::<_, N, M, _, true>(Ekf::new(m.x0, m.p0).unwrap(), &m, m.r_diag, steps),
         "kf_improved" => {
             let adapter = kestrel::adaptive::ImprovedAdaptive::paper000().unwrap();
             let f = Ekf::new(m.x0, m.p0).unwrap().with_adapter(adapter);
@@ -101,8 +111,8 @@ where
                 black_box(f.update(&measurement, black_box(&m.z)).expect("update"));
             }
         }
-        "ukf" => run(Ukf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
-        "srukf" => run(SrUkf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
+        "ukf" => run::<_, N, M, _, true>(Ukf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
+        "srukf" => run::<_, N, M, _, true>(SrUkf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
         "nalgebra" => {
             let mut f = HandKf::new(m.x0, m.p0);
             for _ in 0..steps {
