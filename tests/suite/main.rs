@@ -11,7 +11,6 @@ mod common;
 static ALLOCATOR: kestrel_testkit::CountingAllocator = kestrel_testkit::CountingAllocator;
 
 mod adapters;
-mod compile_messages;
 mod compositions;
 mod consistency;
 mod contract_proptest;

@@ -4,7 +4,7 @@
 //! Jacobian is not pinned: rustc lists every implementor of the trait in
 //! that message, so the pin would break with each new model.
 //! The expected messages are in `tests/compile_fail/*.stderr`; regenerate
-//! them with `TRYBUILD=overwrite cargo test --test compile_messages` after a
+//! them with `TRYBUILD=overwrite cargo test -p kestrel-compile-fail` after a
 //! deliberate change, and read the diff.
 
 #[test]
