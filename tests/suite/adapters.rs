@@ -39,7 +39,9 @@ fn members_in_order<F: LinForm>(name: &str, f: Filter<f64, 2, F>) {
         [Predict(1), Predict(2), Predict(3)],
         "{name}"
     );
-    let report = f.update(&position(0.75), &Vector1::new(6.0)).unwrap();
+    let detail = f
+        .update_detailed(&position(0.75), &Vector1::new(6.0))
+        .unwrap();
     assert_eq!(
         log.borrow()[3..],
         [Gain(1), Gain(2), Gain(3), Update(1), Update(2), Update(3)],
@@ -51,7 +53,7 @@ fn members_in_order<F: LinForm>(name: &str, f: Filter<f64, 2, F>) {
         update_at: Some(update),
     };
     assert_eq!(
-        report.adapters,
+        detail.report.adapters,
         (at(1, 3, 6), at(2, 4, 7), at(3, 5, 8)),
         "{name}"
     );
@@ -65,7 +67,7 @@ fn members_in_order<F: LinForm>(name: &str, f: Filter<f64, 2, F>) {
     assert_slice(&a.seen_covariances[0].concat(), &[9.0, 9.75], TOL, name);
     assert_slice(&b.seen_covariances[0].concat(), &[9.75, 12.75], TOL, name);
     assert_slice(&c.seen_covariances[0].concat(), &[12.75], TOL, name);
-    assert_scalar(report.noise[0], 4.5, TOL, name);
+    assert_scalar(detail.noise[0], 4.5, TOL, name);
     // All three saw the same posterior.
     assert_eq!(a.posteriors, c.posteriors, "{name}");
     assert_eq!(a.posteriors[0].noise, [4.5], "{name}");
@@ -107,9 +109,9 @@ fn same_as_noise_model<F, A, const M: usize>(
     for z in ZS.map(to_z) {
         adapted.predict(&process(), 1.0).unwrap();
         plain.predict(&process(), 1.0).unwrap();
-        let got = adapted.update(sensor, &z).unwrap();
-        let want = plain.update(reference, &z).unwrap();
-        assert!(!want.sequential || M == 1, "{name}");
+        let got = adapted.update_detailed(sensor, &z).unwrap();
+        let want = plain.update_detailed(reference, &z).unwrap();
+        assert!(!want.report.sequential || M == 1, "{name}");
         assert_same_estimate(name, &adapted, &plain);
         assert_close(&got.noise, &r, 1e-15, name);
         assert_close(
@@ -118,7 +120,7 @@ fn same_as_noise_model<F, A, const M: usize>(
             TOL,
             name,
         );
-        assert_scalar(got.adapted_nis, want.nis, TOL, name);
+        assert_scalar(got.report.adapted_nis, want.report.nis, TOL, name);
     }
 }
 
@@ -222,8 +224,8 @@ fn faded<F: LinForm, const SPLIT: bool>(name: &str, f: Filter<f64, 2, F>, at: Fa
         }
         let mut reference = plain(&f, phi() * x, prior);
         let z = Vector1::new(z);
-        let got = f.update(&position(0.75), &z).unwrap();
-        let want = reference.update(&position(0.75), &z).unwrap();
+        let got = f.update_detailed(&position(0.75), &z).unwrap();
+        let want = reference.update_detailed(&position(0.75), &z).unwrap();
         assert_same_estimate(&name, &f, &reference);
         assert_close(
             &got.innovation_covariance,
@@ -231,8 +233,8 @@ fn faded<F: LinForm, const SPLIT: bool>(name: &str, f: Filter<f64, 2, F>, at: Fa
             TOL,
             &name,
         );
-        assert_scalar(got.adapted_nis, want.nis, TOL, &name);
-        assert_scalar(got.fade, lambda, TOL, &name);
+        assert_scalar(got.report.adapted_nis, want.report.nis, TOL, &name);
+        assert_scalar(got.report.fade, lambda, TOL, &name);
     }
 }
 
@@ -297,17 +299,19 @@ fn rejected<F: LinForm>(name: &str, f: Filter<f64, 2, F>) {
     let (x, p) = (*f.state(), f.covariance());
     let skipped = f.clone();
 
-    let report = f.update(&position(0.75), &Vector1::new(6.0)).unwrap();
-    assert!(report.rejected, "{name}");
+    let detail = f
+        .update_detailed(&position(0.75), &Vector1::new(6.0))
+        .unwrap();
+    assert!(detail.report.rejected, "{name}");
     assert_eq!(bits(f.state()), bits(&x), "{name}: state is the prior");
     assert_eq!(bits(&f.covariance()), bits(&p), "{name}: covariance");
-    assert_scalar(report.innovation[0], 3.0, TOL, name);
-    assert_scalar(report.innovation_used[0], 3.0, TOL, name);
-    assert_scalar(report.nis, 1.0, TOL, name);
-    assert_scalar(report.noise[0], 1.5, TOL, name);
-    assert_eq!(report.fade, 1.0, "{name}");
+    assert_scalar(detail.report.innovation[0], 3.0, TOL, name);
+    assert_scalar(detail.report.innovation_used[0], 3.0, TOL, name);
+    assert_scalar(detail.report.nis, 1.0, TOL, name);
+    assert_scalar(detail.noise[0], 1.5, TOL, name);
+    assert_eq!(detail.report.fade, 1.0, "{name}");
     // `after_update` runs only after an accepted update.
-    assert_eq!(report.adapters.1.update_at, None, "{name}");
+    assert_eq!(detail.report.adapters.1.update_at, None, "{name}");
     assert!(f.adapter().0.posteriors.is_empty(), "{name}");
     assert!(!log.borrow().contains(&Event::Update(1)), "{name}");
 
@@ -343,27 +347,27 @@ fn posterior_view<F: LinForm, const SPLIT: bool>(
     for (k, (z0, z1)) in zs.into_iter().enumerate() {
         f.predict(&process(), 1.0).unwrap();
         let z_hat = h * f.state();
-        let report = f.update(&sensor, &Vector2::new(z0, z1)).unwrap();
+        let detail = f.update_detailed(&sensor, &Vector2::new(z0, z1)).unwrap();
         let seen = &f.adapter().posteriors[k];
-        let used = z_hat + report.innovation_used;
+        let used = z_hat + detail.report.innovation_used;
         let residual = used - h * f.state();
         let projected = h * f.covariance() * h.transpose();
         assert_slice(&seen.post_fit_residual, residual.as_slice(), TOL, name);
         assert_slice(&seen.posterior_covariance, projected.as_slice(), TOL, name);
         assert_slice(
             &seen.innovation,
-            report.innovation_used.as_slice(),
+            detail.report.innovation_used.as_slice(),
             TOL,
             name,
         );
-        assert_slice(&seen.noise, report.noise.as_slice(), TOL, name);
-        let predicted = report.innovation_covariance - report.noise;
+        assert_slice(&seen.noise, detail.noise.as_slice(), TOL, name);
+        let predicted = detail.innovation_covariance - detail.noise;
         assert_slice(&seen.predicted, predicted.as_slice(), TOL, name);
         // The two together (the residual through `Gᵀ L⁻¹ ν`) equal them
         // apart, and the whitened innovation gives the adapted NIS.
         assert_slice(&seen.together.0, residual.as_slice(), TOL, name);
         assert_slice(&seen.together.1, projected.as_slice(), TOL, name);
-        assert_scalar(seen.whitened_norm2, report.adapted_nis, TOL, name);
+        assert_scalar(seen.whitened_norm2, detail.report.adapted_nis, TOL, name);
     }
 }
 
@@ -454,7 +458,9 @@ fn report_fields<F: LinForm, const SPLIT: bool>(
     let mut f = f.with_adapter((fader, busy));
     let name = &format!("{name} split={SPLIT}");
     f.predict(&process(), 1.0).unwrap();
-    let report = f.update(&position(0.75), &Vector1::new(6.0)).unwrap();
+    let detail = f
+        .update_detailed(&position(0.75), &Vector1::new(6.0))
+        .unwrap();
 
     let seen = &f.adapter().1;
     let (c, steps) = match (SPLIT, square_root) {
@@ -480,17 +486,20 @@ fn report_fields<F: LinForm, const SPLIT: bool>(
         None => assert!(!SPLIT, "{name}: split missing"),
     }
 
-    assert_scalar(report.innovation[0], 3.0, TOL, name);
-    assert_scalar(report.innovation_used[0], 1.5, TOL, name);
-    assert_scalar(report.nominal_innovation_covariance[0], 17.0, TOL, name);
-    assert_scalar(report.nis, 9.0 / 17.0, TOL, name);
-    assert_scalar(report.noise[0], 1.5, TOL, name);
-    assert_scalar(report.innovation_covariance[0], c, TOL, name);
-    assert_scalar(report.adapted_nis, 2.25 / c, TOL, name);
-    assert_scalar(report.fade, 3.0, TOL, name);
-    assert!(!report.rejected && !report.sequential, "{name}");
-    assert_eq!(report.adapters.0.id, 1, "{name}");
-    assert_eq!(report.adapters.1.id, 2, "{name}");
+    assert_scalar(detail.report.innovation[0], 3.0, TOL, name);
+    assert_scalar(detail.report.innovation_used[0], 1.5, TOL, name);
+    assert_scalar(detail.nominal_innovation_covariance[0], 17.0, TOL, name);
+    assert_scalar(detail.report.nis, 9.0 / 17.0, TOL, name);
+    assert_scalar(detail.noise[0], 1.5, TOL, name);
+    assert_scalar(detail.innovation_covariance[0], c, TOL, name);
+    assert_scalar(detail.report.adapted_nis, 2.25 / c, TOL, name);
+    assert_scalar(detail.report.fade, 3.0, TOL, name);
+    assert!(
+        !detail.report.rejected && !detail.report.sequential,
+        "{name}"
+    );
+    assert_eq!(detail.report.adapters.0.id, 1, "{name}");
+    assert_eq!(detail.report.adapters.1.id, 2, "{name}");
 }
 
 fn report_fields_both<F: LinForm>(name: &str, f: Filter<f64, 2, F>) {

@@ -63,13 +63,13 @@ where
         let z = Vector1::new(z);
         adapted.predict(&process(), 1.0).unwrap();
         reference.predict(&process(), 1.0).unwrap();
-        let report = adapted.update(&position(0.75), &z).unwrap();
+        let detail = adapted.update_detailed(&position(0.75), &z).unwrap();
         reference.update(&position(r), &z).unwrap();
         assert_same_estimate(name, &adapted, &reference);
-        assert_eq!(report.noise[0], r, "{name}");
+        assert_eq!(detail.noise[0], r, "{name}");
 
         let base = step * 3 * k;
-        let list = report.adapters.list();
+        let list = detail.report.adapters.list();
         assert_eq!(list.len(), k, "{name}");
         let ids = 1..=k as u32;
         for (i, (rep, id)) in list.iter().zip(ids.clone()).enumerate() {
@@ -137,18 +137,20 @@ fn mixed_six<F: LinForm>(name: &str, f: Filter<f64, 2, F>) {
         f.predict(&process(), 1.0).unwrap();
         let mut reference = plain(&f, phi() * x, prior);
         let z_hat = reference.state()[0];
-        let report = f.update(&position(0.75), &Vector1::new(z)).unwrap();
+        let detail = f
+            .update_detailed(&position(0.75), &Vector1::new(z))
+            .unwrap();
         let moved = Vector1::new(z_hat + 0.5 * (z - z_hat));
         reference.update(&position(4.5), &moved).unwrap();
         assert_same_estimate(name, &f, &reference);
-        assert!((report.fade - 3.0).abs() < 1e-15, "{name}");
-        assert!((report.noise[0] - 4.5).abs() < 1e-15, "{name}");
+        assert!((detail.report.fade - 3.0).abs() < 1e-15, "{name}");
+        assert!((detail.noise[0] - 4.5).abs() < 1e-15, "{name}");
         let ids: Vec<u32> = [
-            report.adapters.0.id,
-            report.adapters.2.id,
-            report.adapters.3 .0.id,
-            report.adapters.3 .1.id,
-            report.adapters.4.id,
+            detail.report.adapters.0.id,
+            detail.report.adapters.2.id,
+            detail.report.adapters.3 .0.id,
+            detail.report.adapters.3 .1.id,
+            detail.report.adapters.4.id,
         ]
         .to_vec();
         assert_eq!(ids, [1, 3, 4, 5, 6], "{name}");

@@ -105,8 +105,8 @@ fn block_fade_after_predict_matches_hand_computed_prior_and_posterior() {
     f.form_mut().set_fade_states(FadeStates::range(1..2));
     f.predict(&process, 1.0).unwrap();
     assert_eq!(f.covariance(), Matrix2::new(5.0, 4.0, 4.0, 37.0));
-    let report = f.update(&sensor, &Vector1::new(3.8)).unwrap();
-    assert_eq!(report.innovation_covariance[0], 38.0);
+    let detail = f.update_detailed(&sensor, &Vector1::new(3.8)).unwrap();
+    assert_eq!(detail.innovation_covariance[0], 38.0);
     let p = f.covariance();
     let expected = Matrix2::new(
         5.0 - 16.0 / 38.0,
@@ -131,9 +131,9 @@ fn block_fade_at_the_update_matches_hand_computed_gain() {
     f.predict(&process, 1.0).unwrap();
     // Before the update nothing is faded yet: P0 + Q.
     assert_eq!(f.covariance(), Matrix2::new(5.0, 2.0, 2.0, 10.0));
-    let report = f.update(&sensor, &Vector1::new(3.8)).unwrap();
-    assert_eq!(report.fade, 4.0);
-    assert_eq!(report.innovation_covariance[0], 38.0);
+    let detail = f.update_detailed(&sensor, &Vector1::new(3.8)).unwrap();
+    assert_eq!(detail.report.fade, 4.0);
+    assert_eq!(detail.innovation_covariance[0], 38.0);
     let expected = Matrix2::new(
         5.0 - 16.0 / 38.0,
         4.0 - 148.0 / 38.0,

@@ -12,7 +12,7 @@ use kestrel::nalgebra::{Matrix1, Matrix1x2, Matrix2, SMatrix, SVector, Vector1, 
 use kestrel::sigma::MerweParams;
 use kestrel::{
     Ekf, Filter, LinearizedMeasurement, LinearizedProcess, MeasurementModel, ProcessModel, SrUkf,
-    Ukf, UpdateReport,
+    Ukf, UpdateDetail,
 };
 use support::{assert_close, assert_scalar};
 
@@ -28,9 +28,10 @@ struct Expected<const M: usize> {
 }
 
 #[track_caller]
-fn check_report<const M: usize>(name: &str, got: &UpdateReport<f64, M>, want: &Expected<M>) {
-    assert_close(&got.innovation, &want.innovation, TOL, name);
-    assert_close(&got.innovation_used, &want.innovation, TOL, name);
+fn check_report<const M: usize>(name: &str, got: &UpdateDetail<f64, M>, want: &Expected<M>) {
+    let report = &got.report;
+    assert_close(&report.innovation, &want.innovation, TOL, name);
+    assert_close(&report.innovation_used, &want.innovation, TOL, name);
     assert_close(&got.innovation_covariance, &want.covariance, TOL, name);
     assert_close(
         &got.nominal_innovation_covariance,
@@ -39,11 +40,14 @@ fn check_report<const M: usize>(name: &str, got: &UpdateReport<f64, M>, want: &E
         name,
     );
     assert_close(&got.noise, &want.noise, TOL, name);
-    assert_scalar(got.nis, want.nis, TOL, name);
-    assert_scalar(got.adapted_nis, want.nis, TOL, name);
-    assert_eq!(got.fade, 1.0, "{name}: fade");
-    assert!(!got.rejected, "{name}: rejected");
-    assert_eq!(got.sequential, want.sequential, "{name}: sequential flag");
+    assert_scalar(report.nis, want.nis, TOL, name);
+    assert_scalar(report.adapted_nis, want.nis, TOL, name);
+    assert_eq!(report.fade, 1.0, "{name}: fade");
+    assert!(!report.rejected, "{name}: rejected");
+    assert_eq!(
+        report.sequential, want.sequential,
+        "{name}: sequential flag"
+    );
 }
 
 /// Runs `$check(name, filter, sequential_enabled)` for each form built from
@@ -84,10 +88,10 @@ where
     f.predict(&process, 1.0).unwrap();
     assert_scalar(f.state()[0], 0.0, TOL, name);
     assert_scalar(f.covariance()[0], 5.0, TOL, name);
-    let report = f.update(&sensor, &Vector1::new(2.0)).unwrap();
+    let detail = f.update_detailed(&sensor, &Vector1::new(2.0)).unwrap();
     check_report(
         name,
-        &report,
+        &detail,
         &Expected {
             innovation: Vector1::new(2.0),
             covariance: Matrix1::new(10.0),
@@ -104,10 +108,10 @@ where
     // NIS = 8.5²/8.5 = 8.5.
     f.predict(&process, 1.0).unwrap();
     assert_scalar(f.covariance()[0], 3.5, TOL, name);
-    let report = f.update(&sensor, &Vector1::new(9.5)).unwrap();
+    let detail = f.update_detailed(&sensor, &Vector1::new(9.5)).unwrap();
     check_report(
         name,
-        &report,
+        &detail,
         &Expected {
             innovation: Vector1::new(8.5),
             covariance: Matrix1::new(8.5),
@@ -160,10 +164,10 @@ where
     //   P⁺₁₁ = 8.25 − 68.0625/9 = 8.25 − 7.5625 = 0.6875
     //   P⁺₁₂ = 3.5 − 28.875/9 = 84/24 − 77/24 = 7/24
     //   P⁺₂₂ = 3 − 12.25/9 = 3 − 49/36 = 59/36
-    let report = f.update(&sensor, &Vector1::new(6.0)).unwrap();
+    let detail = f.update_detailed(&sensor, &Vector1::new(6.0)).unwrap();
     check_report(
         name,
-        &report,
+        &detail,
         &Expected {
             innovation: Vector1::new(3.0),
             covariance: Matrix1::new(9.0),
@@ -206,10 +210,12 @@ where
     // P⁺ = (I − K) P = [3 −1; −1 3]/8 · [2 1; 1 2] = [5 1; 1 5]/8.
     // NIS = νᵀ C⁻¹ ν = 64·3/8 = 24.
     let diagonal = LinearMeasurement::new(Matrix2::identity(), Matrix2::identity());
-    let report = f.update(&diagonal, &Vector2::new(9.0, -1.0)).unwrap();
+    let detail = f
+        .update_detailed(&diagonal, &Vector2::new(9.0, -1.0))
+        .unwrap();
     check_report(
         name,
-        &report,
+        &detail,
         &Expected {
             innovation: Vector2::new(8.0, 0.0),
             covariance: Matrix2::new(3.0, 1.0, 1.0, 3.0),
@@ -232,10 +238,12 @@ where
     // NIS = 3² (C⁻¹)₁₁ = 9 · (P⁻¹)₁₁ / 1.5 = 9 · (2/3) / 1.5 = 4.
     let mut f = start;
     let correlated = LinearMeasurement::new(Matrix2::identity(), Matrix2::new(1.0, 0.5, 0.5, 1.0));
-    let report = f.update(&correlated, &Vector2::new(4.0, -1.0)).unwrap();
+    let detail = f
+        .update_detailed(&correlated, &Vector2::new(4.0, -1.0))
+        .unwrap();
     check_report(
         name,
-        &report,
+        &detail,
         &Expected {
             innovation: Vector2::new(3.0, 0.0),
             covariance: Matrix2::new(3.0, 1.5, 1.5, 3.0),
@@ -311,10 +319,10 @@ fn ekf_on_squares() {
         f.predict(&Square, 1.0).unwrap();
         assert_scalar(f.state()[0], 1.0, TOL, name);
         assert_scalar(f.covariance()[0], 4.5, TOL, name);
-        let report = f.update(&Squared, &Vector1::new(4.0)).unwrap();
+        let detail = f.update_detailed(&Squared, &Vector1::new(4.0)).unwrap();
         check_report(
             name,
-            &report,
+            &detail,
             &Expected {
                 innovation: Vector1::new(3.0),
                 covariance: Matrix1::new(19.0),
@@ -376,10 +384,10 @@ where
     let c = t.var + 1.0;
     let nu = 4.0 - t.mean;
     let k = t.cross / c;
-    let report = f.update(&Squared, &Vector1::new(4.0)).unwrap();
+    let detail = f.update_detailed(&Squared, &Vector1::new(4.0)).unwrap();
     check_report(
         name,
-        &report,
+        &detail,
         &Expected {
             innovation: Vector1::new(nu),
             covariance: Matrix1::new(c),
@@ -393,7 +401,7 @@ where
     if params == PARAMS[0] {
         assert_scalar(f.state()[0], 11.0 / 7.0, TOL, name);
         assert_scalar(f.covariance()[0], 3.0 / 7.0, TOL, name);
-        assert_scalar(report.nis, 4.0 / 7.0, TOL, name);
+        assert_scalar(detail.report.nis, 4.0 / 7.0, TOL, name);
     }
 
     // Predict from (1, 1) with Q = 0.5: mean 1 + 1 = 2 and, for the
@@ -414,13 +422,13 @@ where
     let t = square_transform(params, m, p);
     let c = t.var + 1.0;
     let nu = 20.0 - t.mean;
-    let report = f.update(&Squared, &Vector1::new(20.0)).unwrap();
-    assert_scalar(report.innovation[0], nu, TOL, name);
-    assert_scalar(report.innovation_covariance[0], c, 1e-12 * c, name);
+    let detail = f.update_detailed(&Squared, &Vector1::new(20.0)).unwrap();
+    assert_scalar(detail.report.innovation[0], nu, TOL, name);
+    assert_scalar(detail.innovation_covariance[0], c, 1e-12 * c, name);
     assert_scalar(f.state()[0], m + t.cross / c * nu, TOL, name);
     assert_scalar(f.covariance()[0], p - t.cross * t.cross / c, TOL, name);
     if params == PARAMS[0] {
-        assert_scalar(report.innovation_covariance[0], 189.5, TOL, name);
+        assert_scalar(detail.innovation_covariance[0], 189.5, TOL, name);
         assert_scalar(f.state()[0], 2.0 + 26.0 * 9.5 / 189.5, TOL, name);
     }
 }

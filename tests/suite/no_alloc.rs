@@ -3,8 +3,9 @@
 //! current thread while it is armed, and every form (covariance with batch
 //! and with sequential updates, UKF, square-root UKF with both time-update
 //! methods), in `f32` and `f64`, with no adapter and with an adapter tuple,
-//! runs its predict / update loop and its error paths (NaN measurement, NaN
-//! transition) armed with a count of zero.
+//! runs its predict / update loop (`update` and `update_detailed` in turn)
+//! and its error paths (NaN measurement, NaN transition) armed with a count
+//! of zero.
 //!
 //! The flag and the counter are thread-local, so the test harness's own
 //! threads (output capture, other tests) cannot disturb a count; a positive
@@ -139,11 +140,19 @@ where
             nan_measurement: None,
             nan_transition: None,
         };
-        for z in &zs {
+        for (k, z) in zs.iter().enumerate() {
             if filter.predict(&process, lit(0.1)).is_err() {
                 continue;
             }
-            if let Ok(report) = filter.update(&sensor, z) {
+            // Every other step returns the detail (the matrices too).
+            let report = if k % 2 == 0 {
+                filter.update(&sensor, z)
+            } else {
+                filter
+                    .update_detailed(&sensor, z)
+                    .map(|d| black_box(d).report)
+            };
+            if let Ok(report) = report {
                 outcome.accepted += 1;
                 outcome.sequential += usize::from(report.sequential);
                 black_box(report);

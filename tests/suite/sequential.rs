@@ -12,7 +12,7 @@ use crate::common;
 use common::{dispatch, SIZES};
 use kestrel::models::LinearProcess;
 use kestrel::nalgebra::{Matrix3, Matrix3x4, Matrix4, SVector, Vector3, Vector4};
-use kestrel::{Ekf, LinearizedMeasurement, MeasurementModel, UpdateReport};
+use kestrel::{Ekf, LinearizedMeasurement, MeasurementModel, UpdateDetail};
 use rand::RngExt;
 use rand_distr::StandardNormal;
 
@@ -21,10 +21,11 @@ const TOL: f64 = 1e-12;
 /// Asserts the sequential and batch results agree to [`TOL`].
 #[track_caller]
 fn assert_same<const N: usize, const M: usize>(
-    (seq, seq_report): (&Ekf<f64, N>, &UpdateReport<f64, M>),
-    (batch, batch_report): (&Ekf<f64, N>, &UpdateReport<f64, M>),
+    (seq, seq_detail): (&Ekf<f64, N>, &UpdateDetail<f64, M>),
+    (batch, batch_detail): (&Ekf<f64, N>, &UpdateDetail<f64, M>),
     what: &str,
 ) {
+    let (seq_report, batch_report) = (&seq_detail.report, &batch_detail.report);
     assert!(seq_report.sequential, "{what}: sequential path not taken");
     assert!(!batch_report.sequential, "{what}: batch path not taken");
     let p_ref = batch.covariance();
@@ -32,8 +33,8 @@ fn assert_same<const N: usize, const M: usize>(
     assert!(dp <= TOL, "{what}: covariance differs by {dp:e}");
     let dx = common::state_difference(seq.state(), batch.state(), &p_ref);
     assert!(dx <= TOL, "{what}: state differs by {dx:e}");
-    let c_ref = batch_report.innovation_covariance;
-    let dc = common::relative_difference(&seq_report.innovation_covariance, &c_ref);
+    let c_ref = batch_detail.innovation_covariance;
+    let dc = common::relative_difference(&seq_detail.innovation_covariance, &c_ref);
     assert!(dc <= TOL, "{what}: innovation covariance differs by {dc:e}");
     let dn = (seq_report.nis - batch_report.nis).abs() / batch_report.nis;
     assert!(
@@ -55,8 +56,8 @@ fn linear<const N: usize, const M: usize>(seed: u64) {
         seq.predict(&case.process, 1.0).expect("predict");
         batch.set_state(*seq.state()).expect("finite");
         batch.set_covariance(&seq.covariance()).expect("finite");
-        let seq_report = seq.update(&case.measurement, z).expect("update");
-        let batch_report = batch.update(&case.measurement, z).expect("update");
+        let seq_report = seq.update_detailed(&case.measurement, z).expect("update");
+        let batch_report = batch.update_detailed(&case.measurement, z).expect("update");
         let what = format!("N = {N}, M = {M}, seed {seed}, step {k}");
         assert_same((&seq, &seq_report), (&batch, &batch_report), &what);
     }
@@ -159,8 +160,8 @@ fn sequential_equals_batch_on_a_nonlinear_ekf() {
         seq.predict(&process, dt).expect("predict");
         batch.set_state(*seq.state()).expect("finite");
         batch.set_covariance(&seq.covariance()).expect("finite");
-        let seq_report = seq.update(&sensor, &z).expect("update");
-        let batch_report = batch.update(&sensor, &z).expect("update");
+        let seq_report = seq.update_detailed(&sensor, &z).expect("update");
+        let batch_report = batch.update_detailed(&sensor, &z).expect("update");
         assert_same(
             (&seq, &seq_report),
             (&batch, &batch_report),

@@ -21,7 +21,7 @@ use kestrel::adapter::{GainStep, NoiseAdapter, PriorAdapter};
 use kestrel::form::{CovarianceForm, Form, PredictForm, SquareRootForm, UnscentedForm, UpdateForm};
 use kestrel::models::{LinearMeasurement, LinearProcess};
 use kestrel::nalgebra::{SMatrix, SVector};
-use kestrel::{Ekf, Filter, SrUkf, Ukf, UpdateReport};
+use kestrel::{Ekf, Filter, SrUkf, Ukf, UpdateDetail};
 
 /// Relative agreement of two solves of the same system by different
 /// factorisations (observed: below `1e-14` on these models, a tenfold margin).
@@ -102,10 +102,10 @@ where
         // A filter built from the prior has nothing cached: it checks and
         // factors R itself.
         let mut fresh = make(*fast.state(), fast.covariance());
-        let c = fresh.update(&measurement, z).expect("update");
-        let a = fast.update(&measurement, z).expect("update");
+        let c = fresh.update_detailed(&measurement, z).expect("update");
+        let a = fast.update_detailed(&measurement, z).expect("update");
         let b = general
-            .update_with(&measurement, z, &mut Passive)
+            .update_detailed_with(&measurement, z, &mut Passive)
             .expect("update");
         let what = format!("N = {N}, M = {M}, seed {seed}, step {k}");
         close(fast.state(), general.state(), &format!("{what}: state"));
@@ -114,20 +114,29 @@ where
             &general.covariance(),
             &format!("{what}: covariance"),
         );
-        let nis = |r: &UpdateReport<f64, M>| SMatrix::<f64, 2, 1>::new(r.nis, r.adapted_nis);
+        let nis = |d: &UpdateDetail<f64, M>| {
+            SMatrix::<f64, 2, 1>::new(d.report.nis, d.report.adapted_nis)
+        };
         close(&nis(&a), &nis(&b), &format!("{what}: NIS"));
-        assert_eq!(a.innovation, b.innovation, "{what}");
-        assert_eq!(a.innovation_used, b.innovation_used, "{what}");
+        let (ra, rb) = (&a.report, &b.report);
+        assert_eq!(ra.innovation, rb.innovation, "{what}");
+        assert_eq!(ra.innovation_used, rb.innovation_used, "{what}");
         // To rounding for the square-root form, whose general round forms
         // the nominal `C` as `(C − R) + R`.
-        let cs =
-            |r: &UpdateReport<f64, M>| (r.innovation_covariance, r.nominal_innovation_covariance);
-        close(&cs(&a).0, &cs(&b).0, &format!("{what}: C"));
-        close(&cs(&a).1, &cs(&b).1, &format!("{what}: nominal C"));
+        close(
+            &a.innovation_covariance,
+            &b.innovation_covariance,
+            &format!("{what}: C"),
+        );
+        close(
+            &a.nominal_innovation_covariance,
+            &b.nominal_innovation_covariance,
+            &format!("{what}: nominal C"),
+        );
         assert_eq!(a.noise, b.noise, "{what}");
         assert_eq!(
-            (a.fade, a.rejected, a.sequential),
-            (b.fade, b.rejected, b.sequential),
+            (ra.fade, ra.rejected, ra.sequential),
+            (rb.fade, rb.rejected, rb.sequential),
             "{what}"
         );
         // Lockstep: the next step starts both from the same prior.
@@ -140,7 +149,7 @@ where
         close(&c.innovation_covariance, &a.innovation_covariance, &cached);
         close(&nis(&c), &nis(&a), &cached);
         assert_eq!(c.noise, a.noise, "{cached}");
-        assert!(!a.sequential && !a.rejected, "{what}");
+        assert!(!ra.sequential && !ra.rejected, "{what}");
     }
 }
 

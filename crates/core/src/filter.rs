@@ -5,7 +5,7 @@ use nalgebra::{SMatrix, SVector};
 use crate::adapter::{NoiseAdapter, PriorAdapter};
 use crate::form::{CovarianceForm, Form, PredictForm, SquareRootForm, UnscentedForm, UpdateForm};
 use crate::sigma::MerweParams;
-use crate::{Euclidean, FilterError, Real, StateSpace, UpdateReport};
+use crate::{Euclidean, FilterError, Real, StateSpace, UpdateDetail, UpdateReport};
 
 /// A recursive estimator of an `N`-dimensional state: an update form `F`
 /// (covariance, unscented or square-root unscented), a noise adapter `A`
@@ -199,6 +199,21 @@ impl<T: Real, const N: usize, F: Form<T, N>, A, S: StateSpace<T, N>> Filter<T, N
             .update(&mut self.x, model, z, &mut self.adapter, &self.space)
     }
 
+    /// As [`update`](Self::update), with the update's innovation
+    /// covariances and noise ([`UpdateDetail`]).
+    pub fn update_detailed<H, const M: usize>(
+        &mut self,
+        model: &H,
+        z: &SVector<T, M>,
+    ) -> Result<UpdateDetail<T, M, A::Report>, FilterError>
+    where
+        F: UpdateForm<T, N, H, M>,
+        A: NoiseAdapter<T, M>,
+    {
+        self.form
+            .update(&mut self.x, model, z, &mut self.adapter, &self.space)
+    }
+
     /// Updates with a different adapter than the filter's own, for a second
     /// measurement stream (say, an odometer next to GNSS): pass `&mut ()` for
     /// a plain update.
@@ -208,6 +223,22 @@ impl<T: Real, const N: usize, F: Form<T, N>, A, S: StateSpace<T, N>> Filter<T, N
         z: &SVector<T, M>,
         adapter: &mut B,
     ) -> Result<UpdateReport<T, M, B::Report>, FilterError>
+    where
+        F: UpdateForm<T, N, H, M>,
+        B: NoiseAdapter<T, M>,
+    {
+        self.form
+            .update(&mut self.x, model, z, adapter, &self.space)
+    }
+
+    /// As [`update_with`](Self::update_with), with the update's innovation
+    /// covariances and noise ([`UpdateDetail`]).
+    pub fn update_detailed_with<H, B, const M: usize>(
+        &mut self,
+        model: &H,
+        z: &SVector<T, M>,
+        adapter: &mut B,
+    ) -> Result<UpdateDetail<T, M, B::Report>, FilterError>
     where
         F: UpdateForm<T, N, H, M>,
         B: NoiseAdapter<T, M>,

@@ -14,9 +14,10 @@
 //! - Add noise adapters ([`adapter`]) as a tuple, run in order; `()` is none.
 //! - [`smoother`]: the Rauch–Tung–Striebel smoother over a recorded forward
 //!   pass of the covariance form, in caller-provided storage.
-//! - [`Filter::update`] returns an [`UpdateReport`] (innovation, its
-//!   covariance, NIS, what the adapters did) or a typed [`FilterError`]; on
-//!   error the filter is unchanged and never holds NaN.
+//! - [`Filter::update`] returns an [`UpdateReport`] (innovation, NIS, what
+//!   the adapters did) or a typed [`FilterError`]; on error the filter is
+//!   unchanged and never holds NaN. [`Filter::update_detailed`] adds the
+//!   innovation covariance and the noise used ([`UpdateDetail`]).
 //!
 //! ```
 //! use kestrel_core::{SrUkf, MeasurementModel, ProcessModel,
@@ -69,7 +70,7 @@ pub use filter::{Ekf, Filter, SrUkf, Ukf};
 pub use model::{LinearizedMeasurement, LinearizedProcess, MeasurementModel, ProcessModel};
 pub use nalgebra;
 pub use real::Real;
-pub use report::UpdateReport;
+pub use report::{UpdateDetail, UpdateOutcome, UpdateReport};
 pub use state_space::{Euclidean, StateSpace};
 
 #[doc = include_str!("../REFERENCES.md")]

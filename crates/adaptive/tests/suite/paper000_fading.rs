@@ -44,18 +44,18 @@ fn failure_rate<F: CvForm<f64>>(name: &str, make: Make<F>) {
         let monitor = DivergenceFading::new(gamma, 1.0).unwrap();
         let mut f = make(cv::x0(), cv::p0()).with_adapter(monitor);
         let mut failed = 0;
-        support::run(
+        support::run_detailed(
             &mut f,
             &stream,
             &cv::sensor(&Matrix2::identity()),
-            |k, r, _| {
-                assert_eq!(r.adapters.fade, 1.0, "{name}: λ_max = 1 never fades");
+            |k, d, _| {
+                assert_eq!(d.report.adapters.fade, 1.0, "{name}: λ_max = 1 never fades");
                 // The premise: C = c I (to rounding).
-                let c = r.innovation_covariance;
+                let c = d.innovation_covariance;
                 let isotropic =
                     (c[(0, 0)] - c[(1, 1)]).abs() <= 1e-9 * c[(0, 0)] && c[(0, 1)].abs() <= 1e-9;
                 assert!(isotropic, "{name} epoch {k}: C = {c}");
-                failed += usize::from(r.adapters.diverged);
+                failed += usize::from(d.report.adapters.diverged);
             },
         )
         .unwrap();

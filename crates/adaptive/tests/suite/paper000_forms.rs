@@ -53,7 +53,8 @@ fn check<T: Real, F: CvForm<T>, B: Build>(
         .with_jump(150, Vector4::new(s.jump, -s.jump, 0.0, 0.0));
     let stream = cv::stream(&spec);
     let mut f = make(cv::x0(), cv::p0()).with_adapter(config.build::<T>());
-    support::run(&mut f, &stream, &cv::sensor(&assumed), |k, r, f| {
+    support::run_detailed(&mut f, &stream, &cv::sensor(&assumed), |k, d, f| {
+        let r = &d.report;
         let what = format!("{name}, {config:?}, {s:?}, epoch {k}");
         let p = f.covariance();
         assert!(support::symmetric_pd(&p), "{what}: P = {p}");
@@ -61,7 +62,7 @@ fn check<T: Real, F: CvForm<T>, B: Build>(
             assert!(support::symmetric_pd(&r_hat), "{what}: R̂ = {r_hat}");
         }
         let finite = |m: &[T]| m.iter().all(|v| v.is_finite());
-        assert!(finite(r.noise.as_slice()), "{what}");
+        assert!(finite(d.noise.as_slice()), "{what}");
         assert!(finite(r.innovation_used.as_slice()), "{what}");
         assert!(r.fade.is_finite() && r.fade >= T::one(), "{what}");
         assert!(

@@ -14,7 +14,7 @@ use kestrel_adaptive::{
 use kestrel_core::nalgebra::{Matrix1, Matrix2, Vector1, Vector2};
 use kestrel_core::FilterError;
 use kestrel_models::{LinearMeasurement, LinearProcess};
-use support::hand::{close, epoch, Models};
+use support::hand::{close, epoch, epoch_detailed, Models};
 
 /// The scalar models `x⁻ = φ x + w`, `w ~ N(0, q)`, `z = x + v`, `v ~ N(0, r)`.
 fn scalar(phi: f64, q: f64, r: f64) -> Models<1, 1> {
@@ -139,14 +139,14 @@ fn divergence_fading_hand_epoch() {
 
     // z = 6: νᵀν = 36 > 14; λ = (36 − 1 − 2) / 4 = 8.25, P⁻ = 34, C = 36.
     each_scalar_form!(1.0, fading, |name, f| {
-        let report = epoch(&mut f, &models, Vector1::new(6.0)).unwrap();
-        let a = report.adapters;
+        let detail = epoch_detailed(&mut f, &models, Vector1::new(6.0)).unwrap();
+        let a = detail.report.adapters;
         assert!(a.diverged, "{name}");
         close(a.statistic, 36.0, name);
         close(a.bound, 14.0, name);
         close(a.fade, 8.25, name);
-        close(report.fade, 8.25, name);
-        close(report.innovation_covariance[0], 36.0, name);
+        close(detail.report.fade, 8.25, name);
+        close(detail.innovation_covariance[0], 36.0, name);
         close(f.state()[0], 34.0 / 36.0 * 6.0, name);
         close(f.covariance()[0], 34.0 * 2.0 / 36.0, name);
     });
@@ -281,17 +281,17 @@ fn sage_husa_two_scalar_epochs() {
     let r2 = (1.0 - d2) * r1 + d2 * (e2 * e2 + hph2);
 
     each_scalar_form!(1.0, SageHusa::new(b).unwrap(), |name, f| {
-        let first = epoch(&mut f, &models, Vector1::new(2.0)).unwrap();
-        assert!(first.adapters.estimated, "{name}");
-        assert_eq!(first.adapters.count, 1, "{name}");
-        close(first.adapters.weight, d1, name);
+        let first = epoch_detailed(&mut f, &models, Vector1::new(2.0)).unwrap();
+        assert!(first.report.adapters.estimated, "{name}");
+        assert_eq!(first.report.adapters.count, 1, "{name}");
+        close(first.report.adapters.weight, d1, name);
         close(first.noise[0], 1.0, name);
         close(f.adapter().estimate()[0], r1, name);
 
-        let second = epoch(&mut f, &models, Vector1::new(4.0)).unwrap();
+        let second = epoch_detailed(&mut f, &models, Vector1::new(4.0)).unwrap();
         close(second.noise[0], r1, name);
-        close(second.adapters.trace, r1, name);
-        close(second.adapters.weight, d2, name);
+        close(second.report.adapters.trace, r1, name);
+        close(second.report.adapters.weight, d2, name);
         close(f.state()[0], 1.0 + k2 * 3.0, name);
         close(f.adapter().estimate()[0], r2, name);
         assert_eq!(f.adapter().count(), 2, "{name}");
@@ -429,8 +429,8 @@ fn improved_adaptive_tests_against_the_estimate() {
         assert!(first.adapters.sage_husa.estimated, "{name}");
         close(f.adapter().sage_husa.estimate()[0], r1, name);
 
-        let second = epoch(&mut f, &models, Vector1::new(1.2)).unwrap();
-        let (compression, fading) = second.adapters.tests;
+        let second = epoch_detailed(&mut f, &models, Vector1::new(1.2)).unwrap();
+        let (compression, fading) = second.report.adapters.tests;
         close(compression.statistic, 0.2 * 0.2 / (0.5 + r1), name);
         close(fading.bound, 2.0 * (0.5 + r1), name);
         close(second.noise[0], r1, name);

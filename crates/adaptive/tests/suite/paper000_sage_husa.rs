@@ -122,10 +122,10 @@ fn psd_every_step<T: Real, F: CvForm<T>>(
     // The estimate the next update's gain must use (the first takes the
     // model's `R`).
     let mut previous = support::mat64(&assumed.map(support::to::<T>));
-    support::run(&mut f, &stream, &cv::sensor(&assumed), |k, report, f| {
+    support::run_detailed(&mut f, &stream, &cv::sensor(&assumed), |k, detail, f| {
         // `R̂` reaches the gain by the factor of its check: `L Lᵀ`, `R̂` to
         // rounding.
-        let used = support::mat64(&report.noise);
+        let used = support::mat64(&detail.noise);
         let tolerance = 64.0 * support::from(T::default_epsilon()) * previous.norm();
         assert!(
             (used - previous).norm() <= tolerance,

@@ -16,8 +16,8 @@ use kestrel_adaptive::{
 use kestrel_core::adapter::NoiseAdapter;
 use kestrel_core::nalgebra::{Matrix2, Vector2};
 use kestrel_core::{Filter, FilterError, Real};
-use support::hand::{close, epoch, planar_walk};
-use support::{cv, rms, run, symmetric_pd, CvForm};
+use support::hand::{close, epoch, epoch_detailed, planar_walk};
+use support::{cv, rms, run, run_detailed, symmetric_pd, CvForm};
 
 /// χ²_0.95(1) = 1.959964² (normal 97.5 % quantile squared).
 const T1: f64 = 3.841_458_820_694_124;
@@ -83,7 +83,8 @@ fn huber_hand_epoch_diagonal_r() {
     for shape in [InflationShape::Congruence, InflationShape::Diagonal] {
         let huber = huber.with_shape(shape);
         each_form_2d!(huber, |name, f| {
-            let report = epoch(&mut f, &m, Vector2::new(10.0, 1.0)).unwrap();
+            let detail = epoch_detailed(&mut f, &m, Vector2::new(10.0, 1.0)).unwrap();
+            let report = &detail.report;
             let a: HuberReport<f64, 2> = report.adapters;
             assert!(a.fault, "{name}");
             close(a.statistic, 50.5, name);
@@ -93,7 +94,7 @@ fn huber_hand_epoch_diagonal_r() {
             close(a.factors[0], t1 / 50.0, name);
             assert_eq!(a.factors[1], 1.0, "{name}");
             assert_eq!(a.inflated, 1, "{name}");
-            close_m(&report.noise, &Matrix2::new(rbar, 0.0, 0.0, 1.0), name);
+            close_m(&detail.noise, &Matrix2::new(rbar, 0.0, 0.0, 1.0), name);
             close(f.state()[0], 10.0 / (1.0 + rbar), name);
             close(f.state()[1], 0.5, name);
             close(f.covariance()[(0, 0)], 1.0 - 1.0 / (1.0 + rbar), name);
@@ -133,12 +134,13 @@ fn huber_hand_epoch_full_r() {
         let inv = Matrix2::new(c[(1, 1)], -c[(0, 1)], -c[(1, 0)], c[(0, 0)]) / det;
         let huber = huber.with_shape(shape);
         each_form_2d!(huber, |name, f| {
-            let report = epoch(&mut f, &m, Vector2::new(10.0, 1.0)).unwrap();
+            let detail = epoch_detailed(&mut f, &m, Vector2::new(10.0, 1.0)).unwrap();
+            let report = &detail.report;
             let a = report.adapters;
             close(a.statistic, 51.2, name);
             close(a.factors[0], a1, name);
             assert_eq!(a.factors[1], 1.0, "{name}");
-            close_m(&report.noise, &rbar, name);
+            close_m(&detail.noise, &rbar, name);
             let x = inv * Vector2::new(10.0, 1.0);
             close(f.state()[0], x[0], name);
             close(f.state()[1], x[1], name);
@@ -170,16 +172,20 @@ fn huber_global_pass_leaves_everything_bit_for_bit() {
     for z in [Vector2::new(2.0, 2.0), Vector2::new(3.0, 0.0)] {
         each_form_2d!(HuberInflation::<f64, 2>::paper().unwrap(), |name, f| {
             let mut plain = f.clone().with_adapter(Passive);
-            let report = epoch(&mut f, &m, z).unwrap();
-            let want = epoch(&mut plain, &m, z).unwrap();
+            let detail = epoch_detailed(&mut f, &m, z).unwrap();
+            let report = &detail.report;
+            let want_detail = epoch_detailed(&mut plain, &m, z).unwrap();
             let a = report.adapters;
             assert!(!a.fault, "{name}");
             assert_eq!(a.factors, Vector2::new(1.0, 1.0), "{name}");
             assert_eq!(a.inflated, 0, "{name}");
-            assert_eq!(bits(&report.noise), bits(&m.1.noise), "{name}");
+            assert_eq!(bits(&detail.noise), bits(&m.1.noise), "{name}");
             assert_eq!(bits(f.state()), bits(plain.state()), "{name}");
             assert_eq!(bits(&f.covariance()), bits(&plain.covariance()), "{name}");
-            assert_eq!(report.innovation_covariance, want.innovation_covariance);
+            assert_eq!(
+                detail.innovation_covariance,
+                want_detail.innovation_covariance
+            );
         });
     }
 }
@@ -206,11 +212,12 @@ fn huber_without_fault_matches_the_plain_filter_bit_for_bit_on_a_stream() {
     for z in &stream.z {
         f.predict(&process, 1.0).unwrap();
         let mut plain = f.clone().with_adapter(Passive);
-        let report = f.update(&sensor, z).unwrap();
+        let detail = f.update_detailed(&sensor, z).unwrap();
+        let report = &detail.report;
         plain.update(&sensor, z).unwrap();
         if !report.adapters.fault {
             passes += 1;
-            assert_eq!(bits(&report.noise), bits(&sensor.noise));
+            assert_eq!(bits(&detail.noise), bits(&sensor.noise));
             assert_eq!(bits(f.state()), bits(plain.state()));
             assert_eq!(bits(&f.covariance()), bits(&plain.covariance()));
         } else {
@@ -229,9 +236,9 @@ fn position_rms<T: Real, F: CvForm<T>, A: NoiseAdapter<T, 2>>(
     r: &Matrix2<f64>,
 ) -> f64 {
     let sensor = cv::sensor::<T>(r);
-    let errors = run(&mut f, stream, &sensor, |k, report, f| {
+    let errors = run_detailed(&mut f, stream, &sensor, |k, detail, f| {
         assert!(symmetric_pd(&f.covariance()), "P at {k}");
-        assert!(symmetric_pd(&report.noise), "R at {k}");
+        assert!(symmetric_pd(&detail.noise), "R at {k}");
     })
     .unwrap();
     rms(&errors[100..])

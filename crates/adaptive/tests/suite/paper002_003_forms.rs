@@ -121,13 +121,13 @@ fn check<T: Real, F: CvForm<T>, A: NoiseAdapter<T, 2> + Clone>(
     for (k, z) in stream.z.iter().enumerate() {
         f.predict(&process, T::one()).unwrap();
         prepare.prepare(f.adapter_mut());
-        let report = f
-            .update(&sensor, &z.map(to::<T>))
+        let detail = f
+            .update_detailed(&sensor, &z.map(to::<T>))
             .unwrap_or_else(|e| panic!("{name} at {k}: {e}"));
         assert!(symmetric_pd(&f.covariance()), "{name}: P at {k}");
-        assert!(symmetric_pd(&report.noise), "{name}: R at {k}");
+        assert!(symmetric_pd(&detail.noise), "{name}: R at {k}");
         assert!(
-            report.innovation_used.iter().all(|v| v.is_finite()),
+            detail.report.innovation_used.iter().all(|v| v.is_finite()),
             "{name} at {k}"
         );
     }

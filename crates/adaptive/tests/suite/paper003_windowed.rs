@@ -18,7 +18,7 @@ use kestrel_core::{Filter, FilterError, Real};
 use kestrel_models::{LinearMeasurement, LinearProcess};
 use proptest::prelude::*;
 use support::hand::close;
-use support::{cv, mat64, run, symmetric_pd, to, CvForm};
+use support::{cv, mat64, run_detailed, symmetric_pd, to, CvForm};
 
 /// [`each_hand_form`] from x₀ = 0, P₀ = ½.
 macro_rules! each_scalar_form {
@@ -36,37 +36,37 @@ fn windowed_hand_run() {
     each_scalar_form!(est, |name, f| {
         let mut step = |z: f64| {
             f.predict(&process, 1.0).unwrap();
-            let report = f.update(&sensor, &Vector1::new(z)).unwrap();
-            let a: WindowedNoiseReport<f64> = report.adapters;
-            (report, a, f.state()[0], f.covariance()[0])
+            let detail = f.update_detailed(&sensor, &Vector1::new(z)).unwrap();
+            let a: WindowedNoiseReport<f64> = detail.report.adapters;
+            (detail, a, f.state()[0], f.covariance()[0])
         };
         // 1: P⁻ = 1, ν = 2; one sample, R = 1 kept: K = ½, x = 1, P = ½.
-        let (report, a, x, p) = step(2.0);
+        let (detail, a, x, p) = step(2.0);
         assert!(!a.estimated && a.samples == 1, "{name}");
-        assert_eq!(report.noise[0], 1.0, "{name}");
+        assert_eq!(detail.noise[0], 1.0, "{name}");
         close(x, 1.0, name);
         close(p, 0.5, name);
         // 2: P⁻ = 1, ν = 5 − 1 = 4; Ĉ = (4 + 16)/2 = 10, R = 10 − 1 = 9;
         // K = 1/10, x = 1 + 0.4, P = 1 · 9/10.
-        let (report, a, x, p) = step(5.0);
+        let (detail, a, x, p) = step(5.0);
         assert!(a.estimated && a.samples == 2 && a.raised == 0, "{name}");
-        close(report.noise[0], 9.0, name);
+        close(detail.noise[0], 9.0, name);
         close(a.min_eigenvalue, 9.0, name);
         close(x, 1.4, name);
         close(p, 0.9, name);
         // 3: P⁻ = 1.4, ν = 0; Ĉ = (16 + 0)/2 = 8, R = 8 − 1.4 = 6.6;
         // K = 1.4/8, x = 1.4, P = 1.4 · 6.6/8 = 1.155.
-        let (report, _, x, p) = step(1.4);
-        close(report.noise[0], 6.6, name);
+        let (detail, _, x, p) = step(1.4);
+        close(detail.noise[0], 6.6, name);
         close(x, 1.4, name);
         close(p, 1.155, name);
         // 4: P⁻ = 1.655, ν = 0.5; Ĉ = (0 + 0.25)/2 = 0.125,
         // R = 0.125 − 1.655 = −1.53 → floored at 0.01; C = 1.665.
-        let (report, a, x, p) = step(1.9);
+        let (detail, a, x, p) = step(1.9);
         assert_eq!(a.raised, 1, "{name}");
         assert_eq!(a.floor, 0.01, "{name}: the configured floor dominates");
         close(a.min_eigenvalue, -1.53, name);
-        close(report.noise[0], 0.01, name);
+        close(detail.noise[0], 0.01, name);
         close(x, 1.4 + 0.5 * 1.655 / 1.665, name);
         close(p, 1.655 * 0.01 / 1.665, name);
     });
@@ -172,12 +172,12 @@ fn converges<T: Real, F: CvForm<T>>(
     let est = WindowedNoise::<T, 2, 50>::new(to(1e-3)).unwrap();
     let mut f = make(cv::x0(), cv::p0()).with_adapter(est);
     let mut sum = Matrix2::<f64>::zeros();
-    run(&mut f, &stream, &model, |k, report, f| {
-        assert_eq!(report.adapters.estimated, k >= 49, "{name} at {k}");
-        assert!(symmetric_pd(&report.noise), "{name}: R at {k}");
+    run_detailed(&mut f, &stream, &model, |k, detail, f| {
+        assert_eq!(detail.report.adapters.estimated, k >= 49, "{name} at {k}");
+        assert!(symmetric_pd(&detail.noise), "{name}: R at {k}");
         assert!(symmetric_pd(&f.covariance()), "{name}: P at {k}");
         if k >= 1000 {
-            sum += mat64(&report.noise);
+            sum += mat64(&detail.noise);
         }
     })
     .unwrap();

@@ -57,12 +57,12 @@ fn replay<T: Real, F: CvForm<T>, const W: usize>(
     for (k, z) in stream.z.iter().enumerate() {
         f.predict(&process, T::one()).unwrap();
         let prior = mat64(&f.covariance());
-        let report = f
-            .update(&sensor, &z.map(to::<T>))
+        let detail = f
+            .update_detailed(&sensor, &z.map(to::<T>))
             .unwrap_or_else(|e| panic!("{name} at {k}: {e}"));
         assert!(symmetric_pd(&f.covariance()), "{name}: P at {k}");
-        assert!(symmetric_pd(&report.noise), "{name}: R at {k}");
-        out.push((prior, mat64(&report.noise), mat64(&f.covariance())));
+        assert!(symmetric_pd(&detail.noise), "{name}: R at {k}");
+        out.push((prior, mat64(&detail.noise), mat64(&f.covariance())));
     }
     out
 }

@@ -62,15 +62,15 @@ fn consistent_run<F: CvForm<f64>>(
 ) -> (usize, usize, f64) {
     let mut f = make(cv::x0(), cv::p0()).with_adapter(adapter);
     let (mut would, mut faded, mut c) = (0, 0, 0.0);
-    support::run(
+    support::run_detailed(
         &mut f,
         &consistent_stream(),
         &cv::sensor(&Matrix2::identity()),
-        |_, r, _| {
-            let a = r.adapters;
+        |_, d, _| {
+            let a = d.report.adapters;
             would += usize::from(a.n_trace > a.m_trace);
             faded += usize::from(a.fade > 1.0);
-            c = r.nominal_innovation_covariance[(0, 0)];
+            c = d.nominal_innovation_covariance[(0, 0)];
         },
     )
     .unwrap_or_else(|e| panic!("{name}: {e}"));

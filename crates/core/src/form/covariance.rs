@@ -9,7 +9,8 @@ use crate::contract::{check_covariance, check_diagonal, check_noise_cached};
 use crate::error::{diagnose, ensure_finite, is_finite};
 use crate::linalg::{mirror_lower, sandwich_into, sandwich_transposed};
 use crate::{
-    FilterError, LinearizedMeasurement, LinearizedProcess, Quantity, Real, StateSpace, UpdateReport,
+    FilterError, LinearizedMeasurement, LinearizedProcess, Quantity, Real, StateSpace,
+    UpdateOutcome, UpdateReport,
 };
 
 /// The covariance form (Kalman filter, extended Kalman filter): stores `P`,
@@ -145,14 +146,19 @@ impl<T: Real, const N: usize, P: LinearizedProcess<T, N>> PredictForm<T, N, P>
 impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
     UpdateForm<T, N, H, M> for CovarianceForm<T, N>
 {
-    fn update<A: NoiseAdapter<T, M>, S: StateSpace<T, N>>(
+    fn update<A, S, O>(
         &mut self,
         x: &mut SVector<T, N>,
         model: &H,
         z: &SVector<T, M>,
         adapter: &mut A,
         space: &S,
-    ) -> Result<UpdateReport<T, M, A::Report>, FilterError> {
+    ) -> Result<O, FilterError>
+    where
+        A: NoiseAdapter<T, M>,
+        S: StateSpace<T, N>,
+        O: UpdateOutcome<T, M, A::Report>,
+    {
         ensure_finite(z, Quantity::Measurement)?;
         let mut r = model.noise();
         // Diagonal R (the sequential path) needs no factor: its check is
@@ -190,19 +196,18 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             ensure_finite(&out.covariance, Quantity::UpdatedCovariance)?;
             *x = x_new;
             self.cov.commit(out.covariance);
-            return Ok(UpdateReport {
+            let report = UpdateReport {
                 innovation: nu,
                 innovation_used: nu,
-                nominal_innovation_covariance: out.innovation_covariance,
-                innovation_covariance: out.innovation_covariance,
-                noise: r,
                 nis: out.nis,
                 adapted_nis: out.nis,
                 fade: T::one(),
                 rejected: false,
                 sequential: true,
                 adapters: A::Report::default(),
-            });
+            };
+            let c = &out.innovation_covariance;
+            return Ok(O::assemble(report, c, c, &r));
         }
 
         // Without an adapter R is dense here (a diagonal one went the
@@ -278,7 +283,7 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             &Posterior::with_whitened(nu_used, &white, hph, r_used, factor),
             &mut done.adapters,
         );
-        let report = done.accepted(nu, c, white.norm_squared(), total_fade);
+        let report = done.accepted(nu, &c, white.norm_squared(), total_fade);
         self.cov.commit_spare();
         Ok(report)
     }

@@ -20,7 +20,7 @@ pub use unscented::UnscentedForm;
 use nalgebra::{SMatrix, SVector};
 
 use crate::adapter::{NoiseAdapter, PriorAdapter};
-use crate::{FilterError, Real, StateSpace, UpdateReport};
+use crate::{FilterError, Real, StateSpace, UpdateOutcome};
 
 /// A covariance representation shared by all forms.
 pub trait Form<T: Real, const N: usize> {
@@ -50,13 +50,19 @@ pub trait PredictForm<T: Real, const N: usize, P>: Form<T, N> {
 /// A form that can update with measurement model `H` of dimension `M`.
 pub trait UpdateForm<T: Real, const N: usize, H, const M: usize>: Form<T, N> {
     /// Updates `x` and the covariance with measurement `z`, running the
-    /// adapter's hooks. On error nothing is changed.
-    fn update<A: NoiseAdapter<T, M>, S: StateSpace<T, N>>(
+    /// adapter's hooks, and returns the outcome `O` (an
+    /// [`UpdateReport`](crate::UpdateReport) or an
+    /// [`UpdateDetail`](crate::UpdateDetail)). On error nothing is changed.
+    fn update<A, S, O>(
         &mut self,
         x: &mut SVector<T, N>,
         model: &H,
         z: &SVector<T, M>,
         adapter: &mut A,
         space: &S,
-    ) -> Result<UpdateReport<T, M, A::Report>, FilterError>;
+    ) -> Result<O, FilterError>
+    where
+        A: NoiseAdapter<T, M>,
+        S: StateSpace<T, N>,
+        O: UpdateOutcome<T, M, A::Report>;
 }

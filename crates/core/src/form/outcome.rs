@@ -10,7 +10,7 @@ use crate::linalg::{
     cholesky, cholesky_semidefinite, joseph_expanded, joseph_factored_noise_negated, solve_lower,
     solve_lower_transpose, Ldl,
 };
-use crate::{FilterError, Quantity, Real, StateSpace, UpdateReport};
+use crate::{FilterError, Quantity, Real, StateSpace, UpdateOutcome, UpdateReport};
 
 /// The gain of a Kalman update (its covariance is written into the
 /// caller's buffer).
@@ -119,7 +119,7 @@ fn joseph_with_gain<T: Real, const N: usize, const M: usize>(
 /// Cholesky factor to rounding.
 #[allow(clippy::too_many_arguments)]
 #[inline]
-pub(crate) fn unadapted_update<T, const N: usize, const M: usize, R: Default, S>(
+pub(crate) fn unadapted_update<T, const N: usize, const M: usize, R: Default, S, O>(
     cov: &mut PendingCovariance<T, N>,
     x: &mut SVector<T, N>,
     space: &S,
@@ -128,10 +128,11 @@ pub(crate) fn unadapted_update<T, const N: usize, const M: usize, R: Default, S>
     predicted: &SMatrix<T, M, M>,
     (noise, noise_factor): (SMatrix<T, M, M>, &SMatrix<T, M, M>),
     innovation: SVector<T, M>,
-) -> Result<UpdateReport<T, M, R>, FilterError>
+) -> Result<O, FilterError>
 where
     T: Real,
     S: StateSpace<T, N>,
+    O: UpdateOutcome<T, M, R>,
 {
     let c = predicted + noise;
     let ldl = Ldl::new(&c).map_err(|e| not_pd(e.index))?;
@@ -155,32 +156,30 @@ where
     *x = x_new;
     let fade = cov.total_fade(T::one());
     cov.commit_spare();
-    Ok(unadapted_report(innovation, c, noise, nis, fade))
+    Ok(unadapted_report(innovation, &c, &noise, nis, fade))
 }
 
-/// The report of an update without adapters: nothing adapted, so the
+/// The outcome of an update without adapters: nothing adapted, so the
 /// innovation and its covariance are the nominal ones.
 #[inline(always)]
-pub(crate) fn unadapted_report<T: Real, const M: usize, R: Default>(
+pub(crate) fn unadapted_report<T: Real, const M: usize, R: Default, O: UpdateOutcome<T, M, R>>(
     innovation: SVector<T, M>,
-    c: SMatrix<T, M, M>,
-    noise: SMatrix<T, M, M>,
+    c: &SMatrix<T, M, M>,
+    noise: &SMatrix<T, M, M>,
     nis: T,
     fade: T,
-) -> UpdateReport<T, M, R> {
-    UpdateReport {
+) -> O {
+    let report = UpdateReport {
         innovation,
         innovation_used: innovation,
-        nominal_innovation_covariance: c,
-        innovation_covariance: c,
-        noise,
         nis,
         adapted_nis: nis,
         fade,
         rejected: false,
         sequential: false,
         adapters: R::default(),
-    }
+    };
+    O::assemble(report, c, c, noise)
 }
 
 /// The lower Cholesky factor of `c`: `known` when the caller has it (the
@@ -273,22 +272,25 @@ impl<T: Real, const M: usize, R> AdaptedStep<'_, '_, T, M, R> {
         ensure_finite(self.step.innovation(), Quantity::Measurement)
     }
 
-    /// The report of a measurement an adapter rejected.
+    /// The outcome of a measurement an adapter rejected.
     #[inline(always)]
-    pub fn rejected(self, innovation: SVector<T, M>) -> UpdateReport<T, M, R> {
-        UpdateReport {
+    pub fn rejected<O: UpdateOutcome<T, M, R>>(self, innovation: SVector<T, M>) -> O {
+        let report = UpdateReport {
             innovation,
             innovation_used: *self.step.innovation(),
-            nominal_innovation_covariance: self.step.nominal_innovation_covariance(),
-            innovation_covariance: *self.step.innovation_covariance(),
-            noise: *self.step.noise(),
             nis: self.nis,
             adapted_nis: self.step.mahalanobis().unwrap_or_else(T::zero),
             fade: T::one(),
             rejected: true,
             sequential: false,
             adapters: self.adapters,
-        }
+        };
+        O::assemble(
+            report,
+            &self.step.nominal_innovation_covariance(),
+            self.step.innovation_covariance(),
+            self.step.noise(),
+        )
     }
 
     /// `L⁻¹ ν` of the innovation used, for `C = L Lᵀ`: the view's own when
@@ -307,29 +309,32 @@ impl<T: Real, const M: usize, R> AdaptedStep<'_, '_, T, M, R> {
         white
     }
 
-    /// The report of an accepted update with innovation covariance `c`,
+    /// The outcome of an accepted update with innovation covariance `c`,
     /// the adapted NIS (`|L⁻¹ ν|²`, see [`whitened`](Self::whitened)) and
     /// total fade `fade`.
     #[inline(always)]
-    pub fn accepted(
+    pub fn accepted<O: UpdateOutcome<T, M, R>>(
         self,
         innovation: SVector<T, M>,
-        c: SMatrix<T, M, M>,
+        c: &SMatrix<T, M, M>,
         adapted_nis: T,
         fade: T,
-    ) -> UpdateReport<T, M, R> {
-        UpdateReport {
+    ) -> O {
+        let report = UpdateReport {
             innovation,
             innovation_used: *self.step.innovation(),
-            nominal_innovation_covariance: self.step.nominal_innovation_covariance(),
-            innovation_covariance: c,
-            noise: *self.step.noise(),
             nis: self.nis,
             adapted_nis,
             fade,
             rejected: false,
             sequential: false,
             adapters: self.adapters,
-        }
+        };
+        O::assemble(
+            report,
+            &self.step.nominal_innovation_covariance(),
+            c,
+            self.step.noise(),
+        )
     }
 }

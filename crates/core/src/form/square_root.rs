@@ -14,7 +14,7 @@ use crate::linalg::{
 };
 use crate::sigma::{self, MeasuredSigma, MerweParams, Pairs, SigmaWeights};
 use crate::{
-    FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace, UpdateReport,
+    FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace, UpdateOutcome,
 };
 
 /// How the square-root form folds the weighted sigma-point deviations into
@@ -353,14 +353,19 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Sq
 impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> UpdateForm<T, N, H, M>
     for SquareRootForm<T, N>
 {
-    fn update<A: NoiseAdapter<T, M>, S: StateSpace<T, N>>(
+    fn update<A, S, O>(
         &mut self,
         x: &mut SVector<T, N>,
         model: &H,
         z: &SVector<T, M>,
         adapter: &mut A,
         space: &S,
-    ) -> Result<UpdateReport<T, M, A::Report>, FilterError> {
+    ) -> Result<O, FilterError>
+    where
+        A: NoiseAdapter<T, M>,
+        S: StateSpace<T, N>,
+        O: UpdateOutcome<T, M, A::Report>,
+    {
         ensure_finite(z, Quantity::Measurement)?;
         let mut r = model.noise();
         let sr = self
@@ -386,7 +391,13 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             *x = x_new;
             let total_fade = self.predict_fade * if self.pending { self.fade } else { T::one() };
             self.commit(s_new);
-            return Ok(unadapted_report(nu, c, r, white.norm_squared(), total_fade));
+            return Ok(unadapted_report(
+                nu,
+                &c,
+                &r,
+                white.norm_squared(),
+                total_fade,
+            ));
         }
 
         let prior = *prior;
@@ -447,7 +458,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             &Posterior::with_whitened(&nu_used, &white, &predicted, &r_used, &sz),
             &mut done.adapters,
         );
-        Ok(done.accepted(nu, c, white.norm_squared(), total_fade))
+        Ok(done.accepted(nu, &c, white.norm_squared(), total_fade))
     }
 }
 

@@ -12,7 +12,7 @@ use crate::linalg::{
 };
 use crate::sigma::{self, MerweParams, SigmaWeights};
 use crate::{
-    FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace, UpdateReport,
+    FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace, UpdateOutcome,
 };
 
 /// The unscented form (UKF) with Merwe scaled sigma points. Needs no
@@ -176,14 +176,19 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Un
 impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> UpdateForm<T, N, H, M>
     for UnscentedForm<T, N>
 {
-    fn update<A: NoiseAdapter<T, M>, S: StateSpace<T, N>>(
+    fn update<A, S, O>(
         &mut self,
         x: &mut SVector<T, N>,
         model: &H,
         z: &SVector<T, M>,
         adapter: &mut A,
         space: &S,
-    ) -> Result<UpdateReport<T, M, A::Report>, FilterError> {
+    ) -> Result<O, FilterError>
+    where
+        A: NoiseAdapter<T, M>,
+        S: StateSpace<T, N>,
+        O: UpdateOutcome<T, M, A::Report>,
+    {
         ensure_finite(z, Quantity::Measurement)?;
         let mut r = model.noise();
         let r_factor = self.noise.check(&r, Quantity::MeasurementNoise)?;
@@ -263,6 +268,6 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             &Posterior::with_whitened(nu_used, &white, pzz, r_used, factor),
             &mut done.adapters,
         );
-        Ok(done.accepted(nu, c, white.norm_squared(), total_fade))
+        Ok(done.accepted(nu, &c, white.norm_squared(), total_fade))
     }
 }

@@ -3,7 +3,9 @@
 
 use kestrel_core::adapter::{NoiseAdapter, PriorAdapter};
 use kestrel_core::form::{Form, PredictForm, UpdateForm};
-use kestrel_core::{real::lit, Filter, FilterError, LinearizedProcess, Real, UpdateReport};
+use kestrel_core::{
+    real::lit, Filter, FilterError, LinearizedProcess, Real, UpdateDetail, UpdateReport,
+};
 use nalgebra::{SMatrix, SVector, Vector3};
 
 use super::feedback::{feed_back, SensorCorrections};
@@ -317,11 +319,20 @@ where
         F: UpdateForm<T, N, ErrorMeasurement<T, N, M>, M>,
         A: NoiseAdapter<T, M>,
     {
-        self.propagate_covariance()?;
-        let report = self.filter.update(model, &model.z())?;
-        self.close_loop()?;
-        self.note_update();
-        Ok(report)
+        self.aided(|f| f.update(model, &model.z()))
+    }
+
+    /// As [`apply`](Self::apply), with the update's innovation covariances
+    /// and noise ([`UpdateDetail`]).
+    pub fn apply_detailed<const M: usize>(
+        &mut self,
+        model: &ErrorMeasurement<T, N, M>,
+    ) -> Result<UpdateDetail<T, M, A::Report>, FilterError>
+    where
+        F: UpdateForm<T, N, ErrorMeasurement<T, N, M>, M>,
+        A: NoiseAdapter<T, M>,
+    {
+        self.aided(|f| f.update_detailed(model, &model.z()))
     }
 
     /// As [`apply`](Self::apply) with `adapter` instead of the filter's own
@@ -360,11 +371,34 @@ where
         F: UpdateForm<T, N, ErrorMeasurement<T, N, M>, M>,
         B: NoiseAdapter<T, M>,
     {
+        self.aided(|f| f.update_with(model, &model.z(), adapter))
+    }
+
+    /// As [`apply_with`](Self::apply_with), with the update's innovation
+    /// covariances and noise ([`UpdateDetail`]).
+    pub fn apply_detailed_with<B, const M: usize>(
+        &mut self,
+        model: &ErrorMeasurement<T, N, M>,
+        adapter: &mut B,
+    ) -> Result<UpdateDetail<T, M, B::Report>, FilterError>
+    where
+        F: UpdateForm<T, N, ErrorMeasurement<T, N, M>, M>,
+        B: NoiseAdapter<T, M>,
+    {
+        self.aided(|f| f.update_detailed_with(model, &model.z(), adapter))
+    }
+
+    /// An aiding update: the pending covariance propagation, `update` on
+    /// the filter, then the feedback of the estimate.
+    fn aided<O>(
+        &mut self,
+        update: impl FnOnce(&mut Filter<T, N, F, A>) -> Result<O, FilterError>,
+    ) -> Result<O, FilterError> {
         self.propagate_covariance()?;
-        let report = self.filter.update_with(model, &model.z(), adapter)?;
+        let outcome = update(&mut self.filter)?;
         self.close_loop()?;
         self.note_update();
-        Ok(report)
+        Ok(outcome)
     }
 
     /// A GNSS position and velocity update at the fix's time (m = 6). A fix

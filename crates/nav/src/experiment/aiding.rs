@@ -71,7 +71,7 @@ where
     }
 
     fn update(&mut self, m: &ErrorMeasurement<f64, N, M>) -> Result<Adaptation, FilterError> {
-        Ok(Adaptation::from_report(&self.apply(m)?))
+        Ok(Adaptation::from_update(&self.apply_detailed(m)?))
     }
 
     fn update_with<B: NoiseAdapter<f64, M, Report: Describe>>(
@@ -79,7 +79,9 @@ where
         m: &ErrorMeasurement<f64, N, M>,
         adapter: &mut B,
     ) -> Result<Adaptation, FilterError> {
-        Ok(Adaptation::from_report(&self.apply_with(m, adapter)?))
+        Ok(Adaptation::from_update(
+            &self.apply_detailed_with(m, adapter)?,
+        ))
     }
 }
 

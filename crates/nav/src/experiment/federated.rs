@@ -171,10 +171,18 @@ where
             h.fixed_rows::<3>(3).into_owned(),
             r.fixed_rows::<3>(3).into_owned(),
         );
-        let r0 = fed.locals_mut().0.update(&pos, &pos.z()).map_err(failed)?;
-        fed.record(0, &r0).map_err(fusion)?;
-        let r1 = fed.locals_mut().1.update(&vel, &vel.z()).map_err(failed)?;
-        fed.record(1, &r1).map_err(fusion)?;
+        let d0 = fed
+            .locals_mut()
+            .0
+            .update_detailed(&pos, &pos.z())
+            .map_err(failed)?;
+        fed.record(0, &d0.report).map_err(fusion)?;
+        let d1 = fed
+            .locals_mut()
+            .1
+            .update_detailed(&vel, &vel.z())
+            .map_err(failed)?;
+        fed.record(1, &d1.report).map_err(fusion)?;
         fed.fuse().map_err(fusion)?;
         // Closed loop: feed the fused estimate back (in f64, natural
         // units), zero every local.
@@ -190,9 +198,9 @@ where
         fed.locals_mut().0.set_state(x0).map_err(failed)?;
         fed.locals_mut().1.set_state(x0).map_err(failed)?;
         let adaptation = Adaptation {
-            nis: to_f64(r0.nis + r1.nis),
-            rejected: r0.rejected && r1.rejected,
-            noise_trace: to_f64(r0.noise.trace() + r1.noise.trace()),
+            nis: to_f64(d0.report.nis + d1.report.nis),
+            rejected: d0.report.rejected && d1.report.rejected,
+            noise_trace: to_f64(d0.noise.trace() + d1.noise.trace()),
             ..Adaptation::default()
         };
         // The fused covariance is not a single filter's: no NEES.

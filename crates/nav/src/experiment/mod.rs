@@ -16,7 +16,7 @@
 //! (recorded files): [`build_filter`] turns a kind into its adapter or
 //! odometer processing for a [`FilterLoop`], [`closed_loop_ekf`] builds
 //! the filter, [`GnssAiding`] and [`OdometerAiding`] are the update steps
-//! on any [`AidedEngine`], and [`Adaptation::from_report`] reads what the
+//! on any [`AidedEngine`], and [`Adaptation::from_update`] reads what the
 //! adapters did ([`Describe`]), so such a loop computes exactly what the
 //! in-memory runner computes.
 //!

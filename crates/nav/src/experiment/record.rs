@@ -4,7 +4,7 @@ use kestrel_adaptive::{
     CompositionReport, CompressionReport, DivergenceReport, FuzzyGainReport, HuberReport,
     StrongTrackingReport, WindowedNoiseReport,
 };
-use kestrel_core::UpdateReport;
+use kestrel_core::UpdateDetail;
 use nalgebra::Vector3;
 
 use super::RunError;
@@ -55,8 +55,8 @@ impl Default for Adaptation {
 }
 
 impl Adaptation {
-    /// From an update report and its adapters' reports (what each adapter
-    /// did, through [`Describe`]).
+    /// From an update's detail and its adapters' reports (what each
+    /// adapter did, through [`Describe`]).
     ///
     /// ```
     /// use kestrel_core::{Ekf, nalgebra::{SMatrix, Vector1}};
@@ -64,17 +64,18 @@ impl Adaptation {
     /// use kestrel_nav::experiment::Adaptation;
     /// let mut f = Ekf::<f64, 1>::new(Vector1::zeros(), SMatrix::identity()).unwrap();
     /// let h = LinearMeasurement::new(SMatrix::identity(), SMatrix::identity() * 3.0);
-    /// let r = f.update(&h, &Vector1::new(2.0)).unwrap();
-    /// let a = Adaptation::from_report(&r);
+    /// let d = f.update_detailed(&h, &Vector1::new(2.0)).unwrap();
+    /// let a = Adaptation::from_update(&d);
     /// // innovation 2, S = P + R = 4: NIS = 1; no adapter, so no fade.
     /// assert_eq!((a.nis, a.fade, a.noise_trace), (1.0, 1.0, 3.0));
     /// ```
-    pub fn from_report<const M: usize, R: Describe>(r: &UpdateReport<f64, M, R>) -> Self {
+    pub fn from_update<const M: usize, R: Describe>(d: &UpdateDetail<f64, M, R>) -> Self {
+        let r = &d.report;
         let mut a = Self {
             nis: r.nis,
             rejected: r.rejected,
             fade: r.fade,
-            noise_trace: r.noise.trace(),
+            noise_trace: d.noise.trace(),
             ..Self::default()
         };
         r.adapters.describe(&mut a);
@@ -178,7 +179,7 @@ impl EpochRecord {
     }
 }
 
-/// Adapter reports that say what they did, for [`Adaptation::from_report`]
+/// Adapter reports that say what they did, for [`Adaptation::from_update`]
 /// (implemented by the reports of the adapters the experiments use, and
 /// pairs of them).
 ///

@@ -5,7 +5,7 @@
 use kestrel_core::adapter::NoiseAdapter;
 use kestrel_core::form::{PredictForm, UpdateForm};
 use kestrel_core::nalgebra::{Matrix2, SVector};
-use kestrel_core::{Filter, FilterError, UpdateReport};
+use kestrel_core::{Filter, FilterError, UpdateDetail, UpdateReport};
 use kestrel_models::{LinearMeasurement, LinearProcess};
 
 /// Agreement required of every form with the hand values (the square-root
@@ -37,7 +37,7 @@ pub fn planar_walk(r: Matrix2<f64>) -> Models<2, 2> {
 /// Predicts over `dt = 1` and updates once with `z`.
 pub fn epoch<F, A, const N: usize, const M: usize>(
     f: &mut Filter<f64, N, F, A>,
-    (process, sensor): &Models<N, M>,
+    models: &Models<N, M>,
     z: SVector<f64, M>,
 ) -> Result<UpdateReport<f64, M, A::Report>, FilterError>
 where
@@ -45,8 +45,22 @@ where
         + UpdateForm<f64, N, LinearMeasurement<f64, N, M>, M>,
     A: NoiseAdapter<f64, M>,
 {
+    epoch_detailed(f, models, z).map(|d| d.report)
+}
+
+/// As [`epoch`], returning the update's detail (its matrices too).
+pub fn epoch_detailed<F, A, const N: usize, const M: usize>(
+    f: &mut Filter<f64, N, F, A>,
+    (process, sensor): &Models<N, M>,
+    z: SVector<f64, M>,
+) -> Result<UpdateDetail<f64, M, A::Report>, FilterError>
+where
+    F: PredictForm<f64, N, LinearProcess<f64, N>>
+        + UpdateForm<f64, N, LinearMeasurement<f64, N, M>, M>,
+    A: NoiseAdapter<f64, M>,
+{
     f.predict(process, 1.0)?;
-    f.update(sensor, &z)
+    f.update_detailed(sensor, &z)
 }
 
 /// Runs `$body` with `$f` bound to a fresh filter (x₀ = `$x0`, P₀ = `$p0`)

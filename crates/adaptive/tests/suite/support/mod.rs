@@ -130,12 +130,26 @@ pub fn run<T: Real, F: CvForm<T>, A: NoiseAdapter<T, { cv::M }>>(
         &Filter<T, { cv::N }, F, A>,
     ),
 ) -> Result<Vec<f64>, kestrel_core::FilterError> {
+    run_detailed(filter, stream, sensor, |k, d, f| check(k, &d.report, f))
+}
+
+/// As [`run`], `check` seeing every update's detail (its matrices too).
+pub fn run_detailed<T: Real, F: CvForm<T>, A: NoiseAdapter<T, { cv::M }>>(
+    filter: &mut Filter<T, { cv::N }, F, A>,
+    stream: &cv::Stream,
+    sensor: &kestrel_models::LinearMeasurement<T, { cv::N }, { cv::M }>,
+    mut check: impl FnMut(
+        usize,
+        &kestrel_core::UpdateDetail<T, { cv::M }, A::Report>,
+        &Filter<T, { cv::N }, F, A>,
+    ),
+) -> Result<Vec<f64>, kestrel_core::FilterError> {
     let process = cv::process::<T>(stream.q);
     let mut errors = Vec::with_capacity(stream.z.len());
     for (k, (z, truth)) in stream.z.iter().zip(&stream.truth).enumerate() {
         filter.predict(&process, T::one())?;
-        let report = filter.update(sensor, &z.map(to::<T>))?;
-        check(k, &report, filter);
+        let detail = filter.update_detailed(sensor, &z.map(to::<T>))?;
+        check(k, &detail, filter);
         let x = filter.state().map(from);
         errors.push((x.fixed_rows::<2>(0) - truth.fixed_rows::<2>(0)).norm());
     }
