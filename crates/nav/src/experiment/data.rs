@@ -143,7 +143,15 @@ impl Iterator for Simulation {
     }
 }
 
-/// FNV-1a over the bits of the data a filter consumes.
+/// A fingerprint of the bits of the data a filter consumes: FNV-1a taken a
+/// 64-bit word at a time, with a rotation so the high bits of one word
+/// reach the low bits of the next step.
+///
+/// Each step (xor with the word, multiplication by an odd constant,
+/// rotation) is a bijection of the state, so two streams that differ in
+/// exactly one word always get different fingerprints. A word at a time
+/// instead of FNV's byte at a time: the byte loop was a chain of eight
+/// dependent multiplications per value, about 6 % of a run's time.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Digest(u64);
 
@@ -155,10 +163,7 @@ impl Default for Digest {
 
 impl Digest {
     fn word(&mut self, w: u64) {
-        for b in w.to_le_bytes() {
-            self.0 ^= u64::from(b);
-            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
-        }
+        self.0 = (self.0 ^ w).wrapping_mul(0x0000_0100_0000_01b3).rotate_left(29);
     }
 
     fn values(&mut self, v: &[f64]) {
@@ -189,5 +194,36 @@ impl Digest {
 
     pub(crate) fn value(&self) -> u64 {
         self.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Digest;
+
+    fn digest(v: &[f64]) -> u64 {
+        let mut d = Digest::default();
+        d.values(v);
+        d.value()
+    }
+
+    #[test]
+    fn any_single_changed_value_or_bit_changes_the_fingerprint() {
+        let base = [1.0, -2.5, 3.25e-7, 0.0, 9.80665, 1e300];
+        let reference = digest(&base);
+        for i in 0..base.len() {
+            for bit in [0, 1, 31, 52, 62, 63] {
+                let mut v = base;
+                v[i] = f64::from_bits(v[i].to_bits() ^ (1 << bit));
+                assert_ne!(digest(&v), reference, "value {i}, bit {bit}");
+            }
+        }
+    }
+
+    #[test]
+    fn order_and_length_matter() {
+        assert_ne!(digest(&[1.0, 2.0]), digest(&[2.0, 1.0]));
+        assert_ne!(digest(&[0.0]), digest(&[0.0, 0.0]));
+        assert_eq!(digest(&[1.0, 2.0]), digest(&[1.0, 2.0]));
     }
 }
