@@ -1,7 +1,7 @@
 //! Running every filter of a scenario over many seeds, in parallel.
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use kestrel::nav::experiment::{run_with, EpochRecord, RunError, RunOptions, RunSummary};
+use kestrel::nav::experiment::{run_together, EpochRecord, RunError, RunOptions, RunSummary};
 use kestrel::nav::scenario::Scenario;
 use rayon::prelude::*;
 
@@ -66,9 +66,10 @@ impl FilterOutcome {
 /// Runs every filter of `scenario` `plan.runs` times, measuring the
 /// position error in `windows` (see [`WindowProbe`]).
 ///
-/// The result is the same for any number of threads: every (filter, run)
-/// job is independent and its result is stored by index. A filter that
-/// fails in a run is recorded as such and the other jobs go on.
+/// The result is the same for any number of threads: every run is an
+/// independent job (its filters share one simulation of the data, see
+/// [`run_together`]) and its results are stored by index. A filter that
+/// fails in a run is recorded as such and the others go on.
 ///
 /// # Errors
 /// [`CliError::Failed`] if the thread pool cannot be built or `runs` is 0.
@@ -81,37 +82,49 @@ pub fn run_monte_carlo(
         return Err(CliError::Failed("--runs must be at least 1".into()));
     }
     let pool = worker_pool(plan.threads)?;
-    let jobs: Vec<(usize, usize)> = (0..scenario.filters.len())
-        .flat_map(|f| (0..plan.runs).map(move |r| (f, r)))
-        .collect();
-    let bar = progress_bar(scenario, jobs.len(), plan.progress);
-    let results: Vec<(RunOutcome, Vec<EpochRecord>)> = pool.install(|| {
-        jobs.par_iter()
-            .map(|&(f, r)| {
-                let options = RunOptions {
-                    duration: plan.duration,
-                    ..RunOptions::default()
-                };
+    let filters = &scenario.filters;
+    let bar = progress_bar(scenario, filters.len() * plan.runs, plan.progress);
+    let options = RunOptions {
+        duration: plan.duration,
+        ..RunOptions::default()
+    };
+    // One job per run: its filters share one simulation of the data.
+    let results: Vec<Vec<(RunOutcome, Vec<EpochRecord>)>> = pool.install(|| {
+        (0..plan.runs)
+            .into_par_iter()
+            .map(|r| {
                 let seed = plan.seed.wrapping_add(r as u64);
-                let mut records = Vec::new();
-                let mut probe = WindowProbe::new(windows);
-                let outcome = run_with(scenario, &scenario.filters[f], seed, &options, |e| {
-                    probe.add(e);
+                let mut probes: Vec<WindowProbe> =
+                    filters.iter().map(|_| WindowProbe::new(windows)).collect();
+                let mut records: Vec<Vec<EpochRecord>> =
+                    filters.iter().map(|_| Vec::new()).collect();
+                let outcomes = run_together(scenario, filters, seed, &options, |i, e| {
+                    probes[i].add(e);
                     if r == 0 {
-                        records.push(*e);
+                        records[i].push(*e);
                     }
                 });
-                bar.inc(1);
-                match outcome {
-                    Ok(summary) => (Ok((summary, probe.finish())), records),
-                    Err(e) => (Err(e), Vec::new()),
+                bar.inc(filters.len() as u64);
+                match outcomes {
+                    Ok(outcomes) => outcomes
+                        .into_iter()
+                        .zip(probes)
+                        .zip(records)
+                        .map(|((outcome, probe), records)| match outcome {
+                            Ok(summary) => (Ok((summary, probe.finish())), records),
+                            Err(e) => (Err(e), Vec::new()),
+                        })
+                        .collect(),
+                    Err(e) => filters
+                        .iter()
+                        .map(|_| (Err(e.clone()), Vec::new()))
+                        .collect(),
                 }
             })
             .collect()
     });
     bar.finish_and_clear();
-    let mut outcomes: Vec<FilterOutcome> = scenario
-        .filters
+    let mut outcomes: Vec<FilterOutcome> = filters
         .iter()
         .map(|k| FilterOutcome {
             label: k.label().to_string(),
@@ -119,10 +132,12 @@ pub fn run_monte_carlo(
             records: Vec::new(),
         })
         .collect();
-    for (&(f, r), (summary, records)) in jobs.iter().zip(results) {
-        outcomes[f].runs.push(summary);
-        if r == 0 {
-            outcomes[f].records = records;
+    for (r, run) in results.into_iter().enumerate() {
+        for (outcome, (summary, records)) in outcomes.iter_mut().zip(run) {
+            outcome.runs.push(summary);
+            if r == 0 {
+                outcome.records = records;
+            }
         }
     }
     Ok(outcomes)

@@ -5,7 +5,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use kestrel::nav::experiment::{run_with, RunOptions, RunSummary};
+use kestrel::nav::experiment::{run_together, RunOptions, RunSummary};
 use kestrel::nav::scenario::{variants, FilterKind, Scenario, Variant, STUDY_SEEDS_FROM};
 use rayon::prelude::*;
 
@@ -61,7 +61,8 @@ fn figures(s: &RunSummary) -> [f64; 3] {
 
 /// Runs the sensitivity study of built-in scenario `name` (no rows for a
 /// scenario without [`variants`]). A (set-up, filter) pair shared by
-/// several variants is run once per seed.
+/// several variants is run once per seed, and the filters of one set-up
+/// share one simulation per seed.
 ///
 /// # Errors
 /// [`CliError::Failed`] if the worker threads cannot start.
@@ -70,18 +71,27 @@ pub fn run_study(name: &str, plan: &StudyPlan) -> Result<Vec<StudyRow>, CliError
     if variants.is_empty() || plan.runs == 0 {
         return Ok(Vec::new());
     }
-    // Unique (scenario without its filter list, filter) jobs.
-    let mut jobs: Vec<(Scenario, FilterKind)> = Vec::new();
-    let mut index = |v: &Variant, k: FilterKind| -> usize {
+    // The unique set-ups (the scenario without its filter list), each with
+    // the filters to run on it; a variant's pair is (set-up, filter) twice.
+    let mut setups: Vec<(Scenario, Vec<FilterKind>)> = Vec::new();
+    let mut index = |v: &Variant, k: FilterKind| -> (usize, usize) {
         let mut s = v.scenario.clone();
         s.filters.clear();
-        if let Some(i) = jobs.iter().position(|(js, jk)| *js == s && *jk == k) {
-            return i;
-        }
-        jobs.push((s, k));
-        jobs.len() - 1
+        let g = setups
+            .iter()
+            .position(|(gs, _)| *gs == s)
+            .unwrap_or_else(|| {
+                setups.push((s, Vec::new()));
+                setups.len() - 1
+            });
+        let kinds = &mut setups[g].1;
+        let i = kinds.iter().position(|x| *x == k).unwrap_or_else(|| {
+            kinds.push(k);
+            kinds.len() - 1
+        });
+        (g, i)
     };
-    let pairs: Vec<(usize, usize)> = variants
+    let pairs: Vec<((usize, usize), (usize, usize))> = variants
         .iter()
         .map(|v| {
             let first = v.scenario.filters[0];
@@ -90,25 +100,32 @@ pub fn run_study(name: &str, plan: &StudyPlan) -> Result<Vec<StudyRow>, CliError
         })
         .collect();
     let pool = worker_pool(plan.threads)?;
-    let work: Vec<(usize, u64)> = (0..jobs.len())
-        .flat_map(|j| (0..plan.runs as u64).map(move |r| (j, STUDY_SEEDS_FROM + r)))
+    let work: Vec<(usize, u64)> = (0..setups.len())
+        .flat_map(|g| (0..plan.runs as u64).map(move |r| (g, STUDY_SEEDS_FROM + r)))
         .collect();
     let options = RunOptions {
         duration: plan.duration,
         ..RunOptions::default()
     }
     .without_records();
-    let results: Vec<Option<[f64; 3]>> = pool.install(|| {
+    // One job per (set-up, seed): its filters share one simulation.
+    let results: Vec<Vec<Option<[f64; 3]>>> = pool.install(|| {
         work.par_iter()
-            .map(|&(j, seed)| {
-                let (s, k) = &jobs[j];
-                run_with(s, k, seed, &options, |_| {})
-                    .ok()
-                    .map(|r| figures(&r))
+            .map(|&(g, seed)| {
+                let (s, kinds) = &setups[g];
+                match run_together(s, kinds, seed, &options, |_, _| {}) {
+                    Ok(runs) => runs.iter().map(|r| r.as_ref().ok().map(figures)).collect(),
+                    Err(_) => vec![None; kinds.len()],
+                }
             })
             .collect()
     });
-    let of = |job: usize| &results[job * plan.runs..(job + 1) * plan.runs];
+    let of = |(g, i): (usize, usize)| -> Vec<Option<[f64; 3]>> {
+        results[g * plan.runs..(g + 1) * plan.runs]
+            .iter()
+            .map(|run| run[i])
+            .collect()
+    };
     Ok(variants
         .iter()
         .zip(pairs)
@@ -117,7 +134,7 @@ pub fn run_study(name: &str, plan: &StudyPlan) -> Result<Vec<StudyRow>, CliError
             let ratios = core::array::from_fn(|m| {
                 let r: Vec<f64> = base
                     .iter()
-                    .zip(fav)
+                    .zip(&fav)
                     .filter_map(|(x, y)| Some(x.as_ref()?[m] / y.as_ref()?[m]))
                     .collect();
                 Quartiles::of(&r)
@@ -127,11 +144,11 @@ pub fn run_study(name: &str, plan: &StudyPlan) -> Result<Vec<StudyRow>, CliError
                 paper: name.to_string(),
                 variant: v.name.clone(),
                 headline: v.headline,
-                baseline: jobs[b].1.label(),
-                favoured: jobs[f].1.label(),
+                baseline: setups[b.0].1[b.1].label(),
+                favoured: setups[f.0].1[f.1].label(),
                 ratios,
                 seeds: plan.runs,
-                failed: (failed(base), failed(fav)),
+                failed: (failed(&base), failed(&fav)),
             }
         })
         .collect())

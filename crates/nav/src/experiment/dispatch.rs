@@ -18,9 +18,8 @@ use super::aiding::{
 };
 use super::error::RunError;
 use super::federated::federated;
-use super::record::{Describe, EpochRecord};
-use super::run::Job;
-use super::summary::RunSummary;
+use super::record::Describe;
+use super::run::{Feed, Job};
 use crate::engine::{Ins15, Ins18, Ins21};
 use crate::measurement::{GnssAntenna, Odometer};
 use crate::odometer::{FuzzyOdometer, InsOdometer16, MaxThreshold, ScaleFactorProcess};
@@ -42,9 +41,9 @@ pub trait FilterLoop<const M: usize> {
     /// restricted to the `fade` states.
     fn gnss<A>(self, adapter: A, fade: FadeBlock) -> Self::Output
     where
-        A: PriorAdapter<f64> + NoiseAdapter<f64, M, Report: Describe>;
+        A: PriorAdapter<f64> + NoiseAdapter<f64, M, Report: Describe> + 'static;
     /// Runs the odometer EKF with `processing`.
-    fn odometer<P: OdometerProcessing>(self, processing: P) -> Self::Output;
+    fn odometer<P: OdometerProcessing + 'static>(self, processing: P) -> Self::Output;
 }
 
 /// Why [`build_filter`] built no filter.
@@ -204,10 +203,10 @@ pub fn closed_loop_ekf<const N: usize, A>(
 }
 
 /// Builds and runs the filter of `kind`.
-pub(crate) fn dispatch<C: FnMut(&EpochRecord)>(
-    job: Job<'_, C>,
+pub(crate) fn dispatch<'a>(
+    job: Job<'a>,
     kind: &FilterKind,
-) -> Result<RunSummary, RunError> {
+) -> Result<Box<dyn Feed + 'a>, RunError> {
     let label = job.label;
     let built = match *kind {
         FilterKind::FederatedUkf { alpha, beta, kappa } => {
@@ -255,13 +254,13 @@ fn p0_15(setup: &FilterSetup) -> SMatrix<f64, 15, 15> {
 }
 
 /// A scenario run whose GNSS updates are position and velocity (m = 6).
-struct Scenario6<'a, C>(Job<'a, C>);
+struct Scenario6<'a>(Job<'a>);
 
 /// A scenario run whose GNSS updates add the attitude (m = 9).
-struct Scenario9<'a, C>(Job<'a, C>);
+struct Scenario9<'a>(Job<'a>);
 
-impl<C: FnMut(&EpochRecord)> FilterLoop<6> for Scenario6<'_, C> {
-    type Output = Result<RunSummary, RunError>;
+impl<'a> FilterLoop<6> for Scenario6<'a> {
+    type Output = Result<Box<dyn Feed + 'a>, RunError>;
 
     fn odometer_model(&self) -> bool {
         self.0.scenario.filter.measurement == MeasurementKind::OdometerVelocity
@@ -269,7 +268,7 @@ impl<C: FnMut(&EpochRecord)> FilterLoop<6> for Scenario6<'_, C> {
 
     fn gnss<A>(self, adapter: A, fade: FadeBlock) -> Self::Output
     where
-        A: PriorAdapter<f64> + NoiseAdapter<f64, 6, Report: Describe>,
+        A: PriorAdapter<f64> + NoiseAdapter<f64, 6, Report: Describe> + 'static,
     {
         let job = self.0;
         let s = &job.scenario.filter;
@@ -296,13 +295,13 @@ impl<C: FnMut(&EpochRecord)> FilterLoop<6> for Scenario6<'_, C> {
         }
     }
 
-    fn odometer<P: OdometerProcessing>(self, processing: P) -> Self::Output {
+    fn odometer<P: OdometerProcessing + 'static>(self, processing: P) -> Self::Output {
         odometer(self.0, processing)
     }
 }
 
-impl<C: FnMut(&EpochRecord)> FilterLoop<9> for Scenario9<'_, C> {
-    type Output = Result<RunSummary, RunError>;
+impl<'a> FilterLoop<9> for Scenario9<'a> {
+    type Output = Result<Box<dyn Feed + 'a>, RunError>;
 
     fn odometer_model(&self) -> bool {
         false
@@ -310,7 +309,7 @@ impl<C: FnMut(&EpochRecord)> FilterLoop<9> for Scenario9<'_, C> {
 
     fn gnss<A>(self, adapter: A, fade: FadeBlock) -> Self::Output
     where
-        A: PriorAdapter<f64> + NoiseAdapter<f64, 9, Report: Describe>,
+        A: PriorAdapter<f64> + NoiseAdapter<f64, 9, Report: Describe> + 'static,
     {
         let job = self.0;
         let s = &job.scenario.filter;
@@ -334,22 +333,22 @@ impl<C: FnMut(&EpochRecord)> FilterLoop<9> for Scenario9<'_, C> {
         }
     }
 
-    fn odometer<P: OdometerProcessing>(self, _: P) -> Self::Output {
+    fn odometer<P: OdometerProcessing + 'static>(self, _: P) -> Self::Output {
         Err(odometer_incompatible(&self.0))
     }
 }
 
-fn gnss_incompatible(job: &Job<'_, impl FnMut(&EpochRecord)>) -> RunError {
+fn gnss_incompatible(job: &Job<'_>) -> RunError {
     job.incompatible("GNSS filters need the 15-, 18- or 21-state model and a GNSS measurement")
 }
 
-fn odometer_incompatible(job: &Job<'_, impl FnMut(&EpochRecord)>) -> RunError {
+fn odometer_incompatible(job: &Job<'_>) -> RunError {
     job.incompatible("odometer filters need the 16-state odometer model")
 }
 
 /// The closed-loop EKF of `N` states with P0 from the scenario.
 fn ekf<const N: usize, A>(
-    job: &Job<'_, impl FnMut(&EpochRecord)>,
+    job: &Job<'_>,
     adapter: A,
     fade: FadeBlock,
 ) -> Result<Ekf<f64, N, A>, RunError> {
@@ -367,7 +366,7 @@ fn ekf<const N: usize, A>(
 
 /// The GNSS aiding: the setup's lever arm and GNSS `R`, if the scenario
 /// has a receiver and the setup an R.
-fn gnss_aiding(job: &Job<'_, impl FnMut(&EpochRecord)>) -> Result<GnssAiding, RunError> {
+fn gnss_aiding(job: &Job<'_>) -> Result<GnssAiding, RunError> {
     let s = &job.scenario.filter;
     match (&job.scenario.gnss, s.r.position, s.r.velocity) {
         (Some(_), Some(position), Some(velocity)) => Ok(GnssAiding {
@@ -379,9 +378,7 @@ fn gnss_aiding(job: &Job<'_, impl FnMut(&EpochRecord)>) -> Result<GnssAiding, Ru
 }
 
 /// The GNSS aiding with the attitude reference and its `R`.
-fn attitude_aiding(
-    job: &Job<'_, impl FnMut(&EpochRecord)>,
-) -> Result<AttitudeVelocityPosition, RunError> {
+fn attitude_aiding(job: &Job<'_>) -> Result<AttitudeVelocityPosition, RunError> {
     let (Some(_), Some(attitude_std)) = (&job.scenario.attitude, job.scenario.filter.r.attitude)
     else {
         return Err(job.incompatible("no attitude reference or no attitude R"));
@@ -399,10 +396,10 @@ fn attitude_aiding(
 /// odometer's Markov σ (the filter knows the sensor model, as it knows the
 /// IMU's) and P0's scale σ. R: the setup's odometer σ, north for the
 /// speed row and east for both constraint rows.
-fn odometer<C: FnMut(&EpochRecord), P: OdometerProcessing>(
-    job: Job<'_, C>,
+fn odometer<P: OdometerProcessing + 'static>(
+    job: Job<'_>,
     processing: P,
-) -> Result<RunSummary, RunError> {
+) -> Result<Box<dyn Feed + '_>, RunError> {
     let sc: &Scenario = job.scenario;
     let s = &sc.filter;
     let (ErrorModelKind::Odometer16 { scale_tau }, MeasurementKind::OdometerVelocity) =

@@ -20,11 +20,9 @@ use kestrel_core::{Ekf, Filter, FilterError, Quantity, Real};
 use kestrel_models::LinearProcess;
 use nalgebra::{SMatrix, SVector, Vector3};
 
-use super::data::Digest;
 use super::error::RunError;
-use super::record::{Adaptation, EpochRecord};
-use super::run::Job;
-use super::summary::RunSummary;
+use super::record::Adaptation;
+use super::run::{Feed, Job};
 use crate::engine::{feed_back, ErrorSystem, Ins15, SensorCorrections};
 use crate::error_model::ForcingMean;
 use crate::measurement::{ErrorMeasurement, GnssAntenna, InsContext};
@@ -34,19 +32,17 @@ use kestrel_core::real::to_f64;
 
 /// Runs the federated filter whose velocity local is `local` (its state
 /// and covariance are reset to the scenario's P0 by the federation).
-pub(crate) fn federated<C, F>(
-    job: Job<'_, C>,
+pub(crate) fn federated<'a, F>(
+    job: Job<'a>,
     local: Result<Filter<f64, 15, F>, FilterError>,
-) -> Result<RunSummary, RunError>
+) -> Result<Box<dyn Feed + 'a>, RunError>
 where
-    C: FnMut(&EpochRecord),
-    F: UpdateForm<f64, 15, ErrorMeasurement<f64, 15, 3>, 3>,
+    F: UpdateForm<f64, 15, ErrorMeasurement<f64, 15, 3>, 3> + 'a,
     (Ekf<f64, 15>, Filter<f64, 15, F>): for<'m> PredictSet<'m, f64, 15, 2, LinearProcess<f64, 15>>,
 {
     let natural = SVector::repeat(1.0);
     let p0 = scaled_p0(job.scenario, &natural);
-    let (summary, outcome) = federated_scaled(job, local, &p0, &natural)?;
-    outcome.map(|()| summary)
+    federated_scaled(job, local, &p0, &natural)
 }
 
 /// The scenario's P0 of the 15 error states scaled by `d`:
@@ -60,19 +56,18 @@ pub(crate) fn scaled_p0(scenario: &Scenario, d: &SVector<f64, 15>) -> SMatrix<f6
 }
 
 /// The federated loop in type `T` on the error states `x' = D x`
-/// (`d` = the diagonal of `D`, `p0` already scaled). Errors before the
-/// first sample are returned as such; a failure during the run ends it and
-/// comes with the summary so far.
-pub(crate) fn federated_scaled<T, F, C>(
-    job: Job<'_, C>,
+/// (`d` = the diagonal of `D`, `p0` already scaled). Errors of the set-up
+/// are returned as such; a federation that cannot start fails the run at
+/// its start ([`Job::stillborn`]).
+pub(crate) fn federated_scaled<'a, T, F>(
+    job: Job<'a>,
     local: Result<Filter<T, 15, F>, FilterError>,
     p0: &SMatrix<f64, 15, 15>,
     d: &SVector<f64, 15>,
-) -> Result<(RunSummary, Result<(), RunError>), RunError>
+) -> Result<Box<dyn Feed + 'a>, RunError>
 where
     T: Real,
-    F: UpdateForm<T, 15, ErrorMeasurement<T, 15, 3>, 3>,
-    C: FnMut(&EpochRecord),
+    F: UpdateForm<T, 15, ErrorMeasurement<T, 15, 3>, 3> + 'a,
     (Ekf<T, 15>, Filter<T, 15, F>): for<'m> PredictSet<'m, T, 15, 2, LinearProcess<T, 15>>,
 {
     let label = job.label;
@@ -95,7 +90,7 @@ where
     let x0 = SVector::<T, 15>::zeros();
     let p0t = p0.map(lit::<T>);
     let locals = (Ekf::new(x0, p0t).map_err(invalid)?, local.map_err(invalid)?);
-    let start = job.sim.initial_truth();
+    let start = job.start;
     let mut fed = match FederatedFilter::new(locals, Sharing::edop(), x0, p0t) {
         Ok(f) => f,
         Err(error) => {
@@ -104,10 +99,7 @@ where
                 time: start.time,
                 error,
             };
-            let nothing = job
-                .accumulator()
-                .finish(label, start.time, Digest::default().value());
-            return Ok((nothing, Err(e)));
+            return Ok(job.stillborn(e));
         }
     };
 
@@ -122,7 +114,7 @@ where
     let mut forcing = ForcingMean::default();
     let mut omega_ib = Vector3::zeros();
     let interval = job.options.covariance_interval;
-    Ok(job.drive(|sample| {
+    Ok(job.driver(move |sample| {
         let time = sample.truth.time;
         let fusion = |error| RunError::Fusion {
             filter: label,

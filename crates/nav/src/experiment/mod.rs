@@ -10,7 +10,9 @@
 //! and reports every aiding epoch ([`EpochRecord`]: navigation errors
 //! against the truth and what the adapters did) and a [`RunSummary`] (RMS
 //! per axis). [`run_with`] streams the records to a callback instead of
-//! storing them.
+//! storing them; [`run_together`] runs several filters on one simulation
+//! (each sample handed to every filter in turn), for the cost of
+//! simulating once and with each filter's results unchanged.
 //!
 //! The building blocks are public for loops over other data sources
 //! (recorded files): [`build_filter`] turns a kind into its adapter or
@@ -72,5 +74,5 @@ pub use precision::{
     PrecisionReport, PrecisionRun, PrecisionSetup, StateScaling,
 };
 pub use record::{Adaptation, Describe, EpochRecord};
-pub use run::{run, run_with, RunResult};
+pub use run::{run, run_together, run_with, RunResult};
 pub use summary::RunSummary;

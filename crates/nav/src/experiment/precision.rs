@@ -31,7 +31,7 @@ use super::error::RunError;
 use super::federated::{federated_scaled, scaled_p0};
 use super::options::RunOptions;
 use super::record::EpochRecord;
-use super::run::Job;
+use super::run::{feed_all, Feed, Job};
 use super::summary::RunSummary;
 use crate::scenario::{FilterKind, Scenario};
 
@@ -512,31 +512,25 @@ fn run_setup<C: FnMut(&EpochRecord)>(
     let sim = Simulation::new(scenario, seed, options)?;
     let d = setup.scaling.vector();
     let p0 = scaled_p0(scenario, &d);
-    let job = Job {
-        label: kind.label(),
-        scenario,
-        sim,
-        options,
-        on_epoch: &mut on_epoch,
-    };
-    let (summary, outcome) = match setup.precision {
-        Precision::F64 => run_in::<f64, _>(job, kind, &p0, &d),
-        Precision::F32 => run_in::<f32, _>(job, kind, &p0, &d),
+    let job = Job::new(kind.label(), scenario, &sim, options);
+    let mut feed = match setup.precision {
+        Precision::F64 => feed_in::<f64>(job, kind, &p0, &d),
+        Precision::F32 => feed_in::<f32>(job, kind, &p0, &d),
     }?;
-    let outcome = match outcome {
+    let outcome = match feed_all(sim, feed.as_mut(), &mut on_epoch) {
         Ok(()) => Outcome::Completed,
         Err(e) => Outcome::Failed(e),
     };
-    Ok((summary, outcome))
+    Ok((feed.summary(), outcome))
 }
 
-/// The federated loop with the UKF or SR-UKF local of `kind` in type `T`.
-fn run_in<T: Real, C: FnMut(&EpochRecord)>(
-    job: Job<'_, C>,
+/// The federated run with the UKF or SR-UKF local of `kind` in type `T`.
+fn feed_in<'a, T: Real>(
+    job: Job<'a>,
     kind: &FilterKind,
     p0: &SMatrix<f64, 15, 15>,
     d: &SVector<f64, 15>,
-) -> Result<(RunSummary, Result<(), RunError>), RunError> {
+) -> Result<Box<dyn Feed + 'a>, RunError> {
     let label = job.label;
     let invalid = |error| RunError::InvalidParameter {
         filter: label,

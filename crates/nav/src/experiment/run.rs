@@ -93,16 +93,123 @@ pub fn run_with<C: FnMut(&EpochRecord)>(
     mut on_epoch: C,
 ) -> Result<RunSummary, RunError> {
     let sim = Simulation::new(scenario, seed, options)?;
-    dispatch(
-        Job {
-            label: kind.label(),
-            scenario,
-            sim,
-            options,
-            on_epoch: &mut on_epoch,
-        },
-        kind,
-    )
+    let mut feed = dispatch(Job::new(kind.label(), scenario, &sim, options), kind)?;
+    feed_all(sim, feed.as_mut(), &mut on_epoch)?;
+    Ok(feed.summary())
+}
+
+/// Runs every filter of `kinds` on one simulation of `scenario` with
+/// sensor noise from `seed`: the same results as [`run_with`] for each
+/// kind, for the cost of simulating once.
+///
+/// The filters take the samples in lockstep, so only one sample is held
+/// at a time, whatever the run's length. `on_epoch(i, record)` receives
+/// the aiding epochs of `kinds[i]`. Entry `i` of the result is that
+/// filter's summary or why it did not finish; a filter that fails leaves
+/// the others running.
+///
+/// # Errors
+/// [`RunError`] if the simulation cannot be built (an invalid trajectory
+/// or rate, a run too long); each filter's own errors are in its entry.
+///
+/// ```
+/// use kestrel_nav::experiment::{run_together, run_with, RunError, RunOptions};
+/// let s = kestrel_nav::scenario::by_name("003").unwrap();
+/// let opts = RunOptions::default().with_duration(20.0);
+/// let mut epochs = vec![0; s.filters.len()];
+/// let all = run_together(&s, &s.filters, 7, &opts, |i, _| epochs[i] += 1).unwrap();
+/// for (kind, together) in s.filters.iter().zip(&all) {
+///     let alone = run_with(&s, kind, 7, &opts, |_| {}).unwrap();
+///     assert_eq!(together.as_ref().unwrap(), &alone);
+/// }
+/// assert_eq!(epochs[0], 200); // 10 Hz odometer for 20 s
+/// // A kind that does not fit the scenario (002's GNSS χ² filter) fails alone.
+/// let gnss_only = kestrel_nav::scenario::by_name("002").unwrap().filters[1];
+/// let mixed = run_together(&s, &[gnss_only, s.filters[0]], 7, &opts, |_, _| {}).unwrap();
+/// assert!(matches!(mixed[0], Err(RunError::Incompatible { .. })));
+/// assert!(mixed[1].is_ok());
+/// ```
+pub fn run_together<C: FnMut(usize, &EpochRecord)>(
+    scenario: &Scenario,
+    kinds: &[FilterKind],
+    seed: u64,
+    options: &RunOptions,
+    mut on_epoch: C,
+) -> Result<Vec<Result<RunSummary, RunError>>, RunError> {
+    let sim = Simulation::new(scenario, seed, options)?;
+    let mut lanes: Vec<Lane<'_>> = kinds
+        .iter()
+        .map(|kind| {
+            let job = Job::new(kind.label(), scenario, &sim, options);
+            match dispatch(job, kind).and_then(|mut feed| feed.start().map(|()| feed)) {
+                Ok(feed) => Lane::Running(feed),
+                Err(e) => Lane::Ended(Err(e)),
+            }
+        })
+        .collect();
+    for sample in sim {
+        let mut running = false;
+        for (i, lane) in lanes.iter_mut().enumerate() {
+            let Lane::Running(feed) = lane else { continue };
+            match feed.feed(&sample) {
+                Ok(Some(record)) => on_epoch(i, &record),
+                Ok(None) => {}
+                Err(e) => *lane = Lane::Ended(Err(e)),
+            }
+            running |= matches!(lane, Lane::Running(_));
+        }
+        if !running {
+            break;
+        }
+    }
+    Ok(lanes
+        .into_iter()
+        .map(|lane| match lane {
+            Lane::Running(feed) => Ok(feed.summary()),
+            Lane::Ended(result) => result,
+        })
+        .collect())
+}
+
+/// One filter of [`run_together`]: still taking samples, or ended (by a
+/// failure, or before the first sample).
+enum Lane<'a> {
+    Running(Box<dyn Feed + 'a>),
+    Ended(Result<RunSummary, RunError>),
+}
+
+/// Feeds every sample of `sim` to `feed`, handing its aiding epochs to
+/// `on_epoch`, until the data ends or the filter fails.
+pub(crate) fn feed_all(
+    sim: Simulation,
+    feed: &mut dyn Feed,
+    on_epoch: &mut dyn FnMut(&EpochRecord),
+) -> Result<(), RunError> {
+    feed.start()?;
+    for sample in sim {
+        if let Some(record) = feed.feed(&sample)? {
+            on_epoch(&record);
+        }
+    }
+    Ok(())
+}
+
+/// A filter run that takes its data one sample at a time, so that several
+/// filters can share one simulation ([`run_together`]).
+pub(crate) trait Feed {
+    /// Called once before the first sample: a failure of the filter's
+    /// set-up that belongs to the run (the summary is then empty).
+    fn start(&mut self) -> Result<(), RunError> {
+        Ok(())
+    }
+
+    /// Processes one sample: the record of an aiding epoch, `None`
+    /// between aidings. An error ends the run; feed nothing after it.
+    fn feed(&mut self, sample: &SensorSample) -> Result<Option<EpochRecord>, RunError>;
+
+    /// The summary of the samples fed so far (up to and including a
+    /// failing one).
+    fn summary(&self) -> RunSummary;
 }
 
 /// What a runner's step returns at an aiding epoch: the navigation
@@ -110,16 +217,31 @@ pub fn run_with<C: FnMut(&EpochRecord)>(
 /// covariance (NED, m², `None` if the runner has no single one).
 pub(crate) type Solved = (NavState, Adaptation, Option<nalgebra::Matrix3<f64>>);
 
-/// Everything a run needs besides the filter.
-pub(crate) struct Job<'a, C> {
+/// Everything a run needs besides the filter and its data.
+pub(crate) struct Job<'a> {
     pub label: &'static str,
     pub scenario: &'a Scenario,
-    pub sim: Simulation,
+    /// The true initial state of the data to come.
+    pub start: NavState,
     pub options: &'a RunOptions,
-    pub on_epoch: &'a mut C,
 }
 
-impl<C: FnMut(&EpochRecord)> Job<'_, C> {
+impl<'a> Job<'a> {
+    /// The job of running `label` on `sim`'s data.
+    pub(crate) fn new(
+        label: &'static str,
+        scenario: &'a Scenario,
+        sim: &Simulation,
+        options: &'a RunOptions,
+    ) -> Self {
+        Self {
+            label,
+            scenario,
+            start: sim.initial_truth(),
+            options,
+        }
+    }
+
     /// The error for a kind that does not fit the scenario.
     pub(crate) fn incompatible(&self, reason: &'static str) -> RunError {
         RunError::Incompatible {
@@ -128,30 +250,29 @@ impl<C: FnMut(&EpochRecord)> Job<'_, C> {
         }
     }
 
-    /// Runs the engine over the simulation with this filter and aiding.
+    /// The engine with this filter and aiding, ready for the samples.
     pub(crate) fn run<const N: usize, S, F, A, G>(
         self,
         system: S,
         filter: Filter<f64, N, F, A>,
         mut aiding: G,
-    ) -> Result<RunSummary, RunError>
+    ) -> Result<Box<dyn Feed + 'a>, RunError>
     where
-        S: ErrorSystem<N>,
-        F: Form<f64, N> + PredictForm<f64, N, S::Process>,
-        A: PriorAdapter<f64>,
-        G: Aiding<N, S, F, A>,
+        S: ErrorSystem<N> + 'a,
+        F: Form<f64, N> + PredictForm<f64, N, S::Process> + 'a,
+        A: PriorAdapter<f64> + 'a,
+        G: Aiding<N, S, F, A> + 'a,
     {
         let sc = self.scenario;
-        let start = self.sim.initial_truth();
         let mut engine = LooselyCoupled::new(
-            Strapdown::new(sc.earth, sc.initial_state(&start)),
+            Strapdown::new(sc.earth, sc.initial_state(&self.start)),
             filter,
             system,
             GnssAntenna::new(sc.filter.lever_arm),
             self.options.covariance_interval,
         );
         let label = self.label;
-        let (summary, outcome) = self.drive(|sample| {
+        Ok(self.driver(move |sample| {
             let fail = |error| RunError::Filter {
                 filter: label,
                 time: sample.truth.time,
@@ -164,8 +285,7 @@ impl<C: FnMut(&EpochRecord)> Job<'_, C> {
                 let p = engine.covariance().fixed_view::<3, 3>(6, 6).into_owned();
                 (*engine.solution(), a, Some(p))
             }))
-        });
-        outcome.map(|()| summary)
+        }))
     }
 
     /// The RMS accumulator of this run's options.
@@ -177,40 +297,89 @@ impl<C: FnMut(&EpochRecord)> Job<'_, C> {
         Accumulator::new(axes, self.options.rms_from)
     }
 
-    /// The loop every runner shares: hands each sample to `step`, which
-    /// returns the navigation solution and adaptation of an aiding epoch
-    /// (`None` between aidings), and measures, accumulates and reports
-    /// each epoch. The first failure ends the run; the summary covers the
-    /// samples up to it.
-    pub(crate) fn drive<P>(self, mut step: P) -> (RunSummary, Result<(), RunError>)
+    /// The run every runner shares around its `step`, which returns the
+    /// navigation solution and adaptation of an aiding epoch (`None`
+    /// between aidings): it measures, accumulates and fingerprints.
+    pub(crate) fn driver<P>(self, step: P) -> Box<dyn Feed + 'a>
     where
-        P: FnMut(&SensorSample) -> Result<Option<Solved>, RunError>,
+        P: FnMut(&SensorSample) -> Result<Option<Solved>, RunError> + 'a,
     {
-        let sc = self.scenario;
-        let mut acc = self.accumulator();
-        let mut digest = Digest::default();
-        let mut end = self.sim.initial_truth().time;
-        let label = self.label;
-        for sample in self.sim {
-            digest.add(&sample);
-            end = sample.truth.time;
-            let epoch = step(&sample).and_then(|solved| {
-                solved
-                    .map(|(nav, adaptation, position_covariance)| {
-                        EpochRecord::measure(&sc.earth, &nav, &sample.truth, adaptation, label)
-                            .map(|r| r.with_position_covariance(position_covariance.as_ref()))
-                    })
-                    .transpose()
-            });
-            match epoch {
-                Ok(Some(record)) => {
-                    acc.add(&record);
-                    (self.on_epoch)(&record);
-                }
-                Ok(None) => {}
-                Err(e) => return (acc.finish(label, end, digest.value()), Err(e)),
-            }
+        Box::new(Driver {
+            label: self.label,
+            scenario: self.scenario,
+            acc: self.accumulator(),
+            digest: Digest::default(),
+            end: self.start.time,
+            step,
+        })
+    }
+
+    /// A run that fails before its first sample with `error`, its summary
+    /// empty.
+    pub(crate) fn stillborn(self, error: RunError) -> Box<dyn Feed + 'a> {
+        Box::new(Stillborn {
+            summary: self.accumulator().finish(
+                self.label,
+                self.start.time,
+                Digest::default().value(),
+            ),
+            error: Some(error),
+        })
+    }
+}
+
+/// [`Job::driver`]'s run.
+struct Driver<'a, P> {
+    label: &'static str,
+    scenario: &'a Scenario,
+    acc: Accumulator,
+    digest: Digest,
+    end: f64,
+    step: P,
+}
+
+impl<P> Feed for Driver<'_, P>
+where
+    P: FnMut(&SensorSample) -> Result<Option<Solved>, RunError>,
+{
+    fn feed(&mut self, sample: &SensorSample) -> Result<Option<EpochRecord>, RunError> {
+        self.digest.add(sample);
+        self.end = sample.truth.time;
+        let (label, earth) = (self.label, &self.scenario.earth);
+        let record = (self.step)(sample)?
+            .map(|(nav, adaptation, position_covariance)| {
+                EpochRecord::measure(earth, &nav, &sample.truth, adaptation, label)
+                    .map(|r| r.with_position_covariance(position_covariance.as_ref()))
+            })
+            .transpose()?;
+        if let Some(record) = &record {
+            self.acc.add(record);
         }
-        (acc.finish(label, end, digest.value()), Ok(()))
+        Ok(record)
+    }
+
+    fn summary(&self) -> RunSummary {
+        self.acc.finish(self.label, self.end, self.digest.value())
+    }
+}
+
+/// [`Job::stillborn`]'s run.
+struct Stillborn {
+    summary: RunSummary,
+    error: Option<RunError>,
+}
+
+impl Feed for Stillborn {
+    fn start(&mut self) -> Result<(), RunError> {
+        self.error.take().map_or(Ok(()), Err)
+    }
+
+    fn feed(&mut self, _: &SensorSample) -> Result<Option<EpochRecord>, RunError> {
+        // Unreachable after a failed `start`; a second start is a no-op.
+        Ok(None)
+    }
+
+    fn summary(&self) -> RunSummary {
+        self.summary
     }
 }

@@ -29,3 +29,4 @@ mod sim_sensors;
 mod sim_trajectory;
 mod sins_dr;
 mod stationary;
+mod together;
