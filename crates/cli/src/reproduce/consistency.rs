@@ -4,7 +4,7 @@
 
 use std::fmt::Write as _;
 
-use kestrel::nav::experiment::{run_with, RunOptions};
+use kestrel::nav::experiment::{run_together, RunOptions};
 use kestrel::nav::scenario::{fault_free, Scenario};
 use rayon::prelude::*;
 
@@ -53,53 +53,88 @@ pub fn nees_rows(
 ) -> Result<Vec<NeesRow>, CliError> {
     let (lo, hi) = band();
     let pool = worker_pool(threads)?;
-    let mut jobs = Vec::new();
-    for (suffix, s) in configs {
-        let clean = fault_free(s);
-        for k in &s.filters {
-            jobs.push((format!("{}{suffix}", k.label()), clean.clone(), *k));
-        }
-    }
+    let clean: Vec<Scenario> = configs.iter().map(|(_, s)| fault_free(s)).collect();
+    let seeds: Vec<u64> = seeds.collect();
     let options = RunOptions {
         duration,
         ..RunOptions::default()
     }
     .without_records();
-    pool.install(|| {
-        Ok(jobs
-            .par_iter()
-            .map(|(label, s, k)| {
+    // One job per (configuration, seed): its filters share one simulation.
+    let work: Vec<(usize, u64)> = (0..clean.len())
+        .flat_map(|c| seeds.iter().map(move |&seed| (c, seed)))
+        .collect();
+    let runs: Vec<Vec<Option<NeesSums>>> = pool.install(|| {
+        work.par_iter()
+            .map(|&(c, seed)| {
+                let s = &clean[c];
                 let start = duration
                     .or_else(|| s.trajectory().ok().map(|t| t.duration()))
                     .unwrap_or(0.0)
                     * SETTLING_SHARE;
-                let (mut sum, mut inside, mut epochs, mut failed) = (0.0, 0usize, 0usize, 0usize);
-                for seed in seeds.clone() {
-                    let (mut rs, mut ri, mut re) = (0.0, 0usize, 0usize);
-                    let run = run_with(s, k, seed, &options, |r| {
-                        if let (true, Some(v)) = (r.time >= start, r.position_nees) {
-                            rs += v;
-                            re += 1;
-                            ri += usize::from(v >= lo && v <= hi);
-                        }
-                    });
-                    if run.is_ok() {
-                        (sum, inside, epochs) = (sum + rs, inside + ri, epochs + re);
-                    } else {
-                        failed += 1;
+                let mut sums = vec![NeesSums::default(); s.filters.len()];
+                let done = run_together(s, &s.filters, seed, &options, |i, r| {
+                    if let (true, Some(v)) = (r.time >= start, r.position_nees) {
+                        sums[i].add(v, (lo..=hi).contains(&v));
                     }
-                }
-                let share = |x: f64| (epochs > 0).then(|| x / epochs as f64);
-                NeesRow {
-                    label: label.clone(),
-                    mean: share(sum),
-                    inside: share(inside as f64),
-                    epochs,
-                    failed,
+                });
+                match done {
+                    Ok(done) => done
+                        .iter()
+                        .zip(sums)
+                        .map(|(d, x)| d.is_ok().then_some(x))
+                        .collect(),
+                    Err(_) => vec![None; s.filters.len()],
                 }
             })
-            .collect())
-    })
+            .collect()
+    });
+    let mut rows = Vec::new();
+    for (c, ((suffix, _), s)) in configs.iter().zip(&clean).enumerate() {
+        let of_config = &runs[c * seeds.len()..(c + 1) * seeds.len()];
+        for (i, k) in s.filters.iter().enumerate() {
+            // Summed over the seeds in order, as a run at a time would.
+            let (mut total, mut failed) = (NeesSums::default(), 0);
+            for run in of_config {
+                match run[i] {
+                    Some(x) => total.merge(&x),
+                    None => failed += 1,
+                }
+            }
+            let share = |x: f64| (total.epochs > 0).then(|| x / total.epochs as f64);
+            rows.push(NeesRow {
+                label: format!("{}{suffix}", k.label()),
+                mean: share(total.sum),
+                inside: share(total.inside as f64),
+                epochs: total.epochs,
+                failed,
+            });
+        }
+    }
+    Ok(rows)
+}
+
+/// The NEES of one filter's counted epochs: their sum, how many fell in
+/// the band, how many there were.
+#[derive(Clone, Copy, Debug, Default)]
+struct NeesSums {
+    sum: f64,
+    inside: usize,
+    epochs: usize,
+}
+
+impl NeesSums {
+    fn add(&mut self, nees: f64, in_band: bool) {
+        self.sum += nees;
+        self.inside += usize::from(in_band);
+        self.epochs += 1;
+    }
+
+    fn merge(&mut self, run: &NeesSums) {
+        self.sum += run.sum;
+        self.inside += run.inside;
+        self.epochs += run.epochs;
+    }
 }
 
 /// The two-sided 95 % band of χ²(3).

@@ -11,4 +11,5 @@ mod real_logs;
 mod reproduce;
 mod scale_factors;
 mod scenario_file;
+mod shared_simulation;
 mod smooth;
