@@ -247,7 +247,7 @@ pub(crate) struct MeasuredSigma<T: Real, const N: usize, const M: usize> {
     pub z_hat: SVector<T, M>,
     pub center: SVector<T, M>,
     pub pairs: Pairs<T, M, N>,
-    /// `P_xz = Σ Wc (χⱼ ⊟ x)(Zⱼ ⊟ ẑ)ᵀ`.
+    /// `P_xz = Σ Wc (χⱼ ⊟ x)(Zⱼ ⊟ ẑ)ᵀ`, with `χ±ᵢ ⊟ x = ±η Sᵢ`.
     pub cross: SMatrix<T, N, M>,
 }
 
@@ -284,15 +284,23 @@ where
     check_sum(&acc, &zs, Quantity::PredictedMeasurement)?;
     let z_hat = z0 + acc * w.other;
     let center = model.residual(&z0, &z_hat);
-    let mut cross = SMatrix::<T, N, M>::zeros();
-    for (zp, cp) in zs.iter_mut().zip(&chi) {
-        for (zv, cv) in zp.iter_mut().zip(cp) {
+    // The state deviations of a pair are `±η Sᵢ` by construction (`⊟`
+    // undoes `⊞`), so `P_xz = W Σᵢ η Sᵢ (dz₊ᵢ − dz₋ᵢ)ᵀ = S (W η Δ)ᵀ`: one
+    // product of `S` with the pairs' residual differences instead of `2N`
+    // outer products, and no deviation `(x ⊞ d) ⊟ x` rounded back from
+    // the points. The centre's state deviation is zero: it adds nothing.
+    let scale = w.other * w.spread;
+    let mut delta = SMatrix::<T, M, N>::zeros();
+    for (zp, column) in zs.iter_mut().zip(delta.data.0.iter_mut()) {
+        for zv in zp.iter_mut() {
             *zv = model.residual(zv, &z_hat);
-            // P_xz += W dx dzᵀ in place (no N × M temporary).
-            cross.ger(w.other, &space.difference(cv, x), zv, T::one());
+        }
+        for ((d, &plus), &minus) in column.iter_mut().zip(zp[0].iter()).zip(zp[1].iter()) {
+            *d = (plus - minus) * scale;
         }
     }
-    // The centre's state deviation is zero, so it adds nothing to P_xz.
+    let mut cross = SMatrix::<T, N, M>::zeros();
+    add_products(&mut cross, None, [s], [&delta], false);
     Ok(MeasuredSigma {
         z_hat,
         center,
@@ -322,5 +330,57 @@ mod tests {
         let p = weighted_covariance(&center, &pairs, &w);
         assert_relative_eq!(p, naive, epsilon = 1e-14);
         assert_eq!(p, p.transpose());
+    }
+
+    /// A heading (state 0, wrapped to (−π, π]) and two plain states.
+    struct Wrapped;
+    impl StateSpace<f64, 3> for Wrapped {
+        fn add(&self, x: &SVector<f64, 3>, dx: &SVector<f64, 3>) -> SVector<f64, 3> {
+            let mut y = x + dx;
+            y[0] = wrap(y[0]);
+            y
+        }
+        fn difference(&self, a: &SVector<f64, 3>, b: &SVector<f64, 3>) -> SVector<f64, 3> {
+            let mut d = a - b;
+            d[0] = wrap(d[0]);
+            d
+        }
+    }
+    fn wrap(a: f64) -> f64 {
+        use core::f64::consts::PI;
+        (a + PI).rem_euclid(2.0 * PI) - PI
+    }
+
+    /// Range and bearing-like nonlinear measurement of the three states.
+    struct Nonlinear;
+    impl MeasurementModel<f64, 3, 2> for Nonlinear {
+        fn predict(&self, x: &SVector<f64, 3>) -> SVector<f64, 2> {
+            SVector::<f64, 2>::new(x[0].sin() * x[1] + x[2] * x[2], x[1].exp() - x[0] * x[2])
+        }
+        fn noise(&self) -> SMatrix<f64, 2, 2> {
+            SMatrix::identity()
+        }
+    }
+
+    #[test]
+    fn the_cross_covariance_equals_the_sum_over_the_points() {
+        // Near the wrap (heading 3.1 rad, spread across ±π) and with a
+        // factor that is not triangular: `P_xz` from `S` and the residual
+        // differences equals `Σ W (χ ⊟ x)(Z ⊟ ẑ)ᵀ` over the points.
+        let x = SVector::<f64, 3>::new(3.1, 0.4, -0.7);
+        let s = SMatrix::<f64, 3, 3>::new(0.05, 0.01, -0.02, 0.03, 0.2, 0.0, -0.01, 0.04, 0.3);
+        let w = MerweParams::new(0.5, 2.0, 1.0).weights(3).unwrap();
+        let measured = measure(&x, &s, &w, &Nonlinear, &Wrapped).unwrap();
+        let chi = points(&x, &s, w.spread, &Wrapped);
+        let mut naive = SMatrix::<f64, 3, 2>::zeros();
+        for (cp, zp) in chi.iter().zip(&measured.pairs) {
+            for (cv, dz) in cp.iter().zip(zp) {
+                naive += Wrapped.difference(cv, &x) * dz.transpose() * w.other;
+            }
+        }
+        // The points do cross the wrap: the test is not of a plain vector.
+        assert!(chi.as_flattened().iter().any(|c| c[0] < 0.0));
+        assert_relative_eq!(measured.cross, naive, epsilon = 1e-15, max_relative = 1e-12);
+        assert!(measured.cross.iter().all(|v| v.abs() > 1e-6));
     }
 }

@@ -17,8 +17,9 @@
 //! `f64`; with the filters' process noise densities ×1/100
 //! ([`PrecisionOptions::small_process_noise`]) the `f32` UKF in mixed units
 //! loses positive definiteness after 90–120 s while the SR-UKF completes
-//! (seeds 1–6). In natural units with that noise either form can fail in
-//! `f32` (the UKF on seed 4 of 1–6, the SR-UKF on seed 1): rounding decides.
+//! (seeds 1–6). In natural units with that noise rounding decides which
+//! form fails in `f32` (the UKF on seeds 1 and 4 of 1–6 in the current
+//! build; builds equal to it to rounding have lost the SR-UKF on seed 1).
 
 use core::fmt;
 
