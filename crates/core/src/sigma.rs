@@ -351,7 +351,7 @@ mod tests {
         (a + PI).rem_euclid(2.0 * PI) - PI
     }
 
-    /// Range and bearing-like nonlinear measurement of the three states.
+    /// A nonlinear measurement of the three states.
     struct Nonlinear;
     impl MeasurementModel<f64, 3, 2> for Nonlinear {
         fn predict(&self, x: &SVector<f64, 3>) -> SVector<f64, 2> {

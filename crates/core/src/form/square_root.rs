@@ -10,7 +10,7 @@ use crate::error::ensure_finite;
 use crate::linalg::{
     add_columns, add_columns_by_rows, cholesky_semidefinite, downdate_columns_in_place,
     downdate_in_place, lower_times_transpose, mirror_lower, mul_lower, mul_vector, solve_lower,
-    solve_lower_transpose, update_in_place, weighted_rank_one_in_place,
+    solve_right_cholesky, update_in_place, weighted_rank_one_in_place,
 };
 use crate::sigma::{self, MeasuredSigma, MerweParams, Pairs, SigmaWeights};
 use crate::{
@@ -474,11 +474,9 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
         x: &SVector<T, N>,
         space: &S,
     ) -> Result<(SMatrix<T, N, N>, SVector<T, N>), FilterError> {
-        // Kᵀ = S_z⁻ᵀ S_z⁻¹ P_xzᵀ.
-        let mut kt = cross.transpose();
-        solve_lower(sz, &mut kt);
-        solve_lower_transpose(sz, &mut kt);
-        let k = kt.transpose();
+        // K = P_xz S_z⁻ᵀ S_z⁻¹.
+        let mut k = *cross;
+        solve_right_cholesky(sz, &mut k);
         let x_new = space.add(x, &mul_vector(&k, nu_used));
         ensure_finite(&x_new, Quantity::UpdatedState)?;
         let u = mul_lower(&k, sz);

@@ -31,4 +31,5 @@ pub(crate) use rank_one::{
     downdate_columns_in_place, downdate_in_place, update_in_place, weighted_rank_one_in_place,
 };
 pub(crate) use symmetric::{joseph_factored_noise_negated, lower_times_transpose, sandwich_into};
+pub(crate) use triangular::solve_right_cholesky;
 pub(crate) use triangularize::add_columns_by_rows;
