@@ -133,7 +133,7 @@ mod tests {
     }
 
     /// `B C⁻¹` by the right-hand solves equals the left-hand solves on
-    /// `Bᵀ`, transposed, bit for bit, in both types and for 1 to 7
+    /// `Bᵀ`, transposed, bit for bit, in both types and for 1, 2, 3, 5, 6 and 7
     /// columns of `C` (the SR-UKF's gain takes this path).
     #[test]
     fn the_right_hand_solves_equal_the_left_hand_ones_bit_for_bit() {
