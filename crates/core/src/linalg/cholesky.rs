@@ -227,10 +227,10 @@ fn factor<T: Real, const N: usize>(
         match pivot(j, diag[0], original[j], below)? {
             Some(root) => {
                 let inv = root.recip();
+                diag[0] = root;
                 for v in below {
                     *v *= inv;
                 }
-                diag[0] = root;
             }
             None => {
                 diag[0] = T::zero();
