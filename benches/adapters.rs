@@ -63,7 +63,7 @@ fn time<const N: usize, A: NoiseAdapter<f64, M>>(
     hook: Hook<A>,
     acted: fn(&UpdateReport<f64, M, A::Report>) -> bool,
 ) {
-    let m = Model::<f64, N, M>::generate(0x6b65_7374_7265_6c00 + N as u64);
+    let m = Model::<f64, N, M>::of_step_benchmarks();
     let zs = measurements(&m);
     let process = LinearProcess::new(m.phi, m.q);
     let sensor = LinearMeasurement::new(m.h, m.r);

@@ -33,12 +33,9 @@ use kestrel::{Ekf, Filter, Real, SrUkf, Ukf};
 use common::adskalman_kf;
 use common::hand::HandKf;
 use common::model::Model;
-use kestrel::real::to_f64;
+use common::reference::{self, CHECK_STEPS};
 
 type Group<'a> = BenchmarkGroup<'a, WallTime>;
-
-/// Steps run (and checked) before timing.
-const CHECK_STEPS: usize = 30;
 
 /// Which measurement noise a benchmark uses.
 #[derive(Clone, Copy)]
@@ -48,7 +45,7 @@ enum Noise {
 }
 
 fn model<T: Real, const N: usize, const M: usize>() -> Model<T, N, M> {
-    Model::<f64, N, M>::generate(0x6b65_7374_7265_6c00 + N as u64).to()
+    Model::<f64, N, M>::of_step_benchmarks().to()
 }
 
 fn noise<T: Real, const N: usize, const M: usize>(
@@ -61,9 +58,8 @@ fn noise<T: Real, const N: usize, const M: usize>(
     }
 }
 
-/// Panics unless `(x, p)` matches the hand-written `f64` filter after
-/// [`CHECK_STEPS`] steps to `1000 ε` relative in the filter's precision
-/// (observed: below `5 ε`).
+/// Panics unless `(x, p)` matches the hand-written `f64` filter (see
+/// [`reference::check`]).
 fn check<T: Real, const N: usize, const M: usize>(
     what: &str,
     x: &SVector<T, N>,
@@ -71,18 +67,7 @@ fn check<T: Real, const N: usize, const M: usize>(
     n: Noise,
 ) {
     let m = model::<f64, N, M>();
-    let r = noise(&m, n);
-    let mut reference = HandKf::new(m.x0, m.p0);
-    for _ in 0..CHECK_STEPS {
-        assert!(reference.step(&m, &r, &m.z), "reference step failed");
-    }
-    let tol = kestrel::real::epsilon::<T>() * kestrel::real::lit(1000.0);
-    let dx = (x.map(to_f64) - reference.x).norm() / reference.x.norm().max(1.0);
-    let dp = (p.map(to_f64) - reference.p).norm() / reference.p.norm();
-    assert!(
-        dx < to_f64(tol) && dp < to_f64(tol),
-        "{what}/{N}: state error {dx:e}, covariance error {dp:e}"
-    );
+    reference::check(what, &m, &noise(&m, n), x, p);
 }
 
 /// Checks `f` and times its predict + update.

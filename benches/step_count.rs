@@ -34,7 +34,7 @@ use kestrel::nalgebra::{Const, DimMin, SMatrix};
 use kestrel::{Ekf, Filter, Real, SrUkf, Ukf};
 
 fn model<T: Real, const N: usize, const M: usize>() -> Model<T, N, M> {
-    Model::<f64, N, M>::generate(0x6b65_7374_7265_6c00 + N as u64).to()
+    Model::<f64, N, M>::of_step_benchmarks().to()
 }
 
 /// `steps` predict + update steps of `f`, handing `black_box` the whole
@@ -65,7 +65,7 @@ fn run<T, const N: usize, const M: usize, F, const WHOLE: bool>(
 /// `steps` predict + update steps of the plain or the `ImprovedAdaptive`
 /// EKF over the simulated measurement cycle.
 fn cycle_steps<const N: usize, const M: usize>(improved: bool, steps: usize) -> bool {
-    let m = Model::<f64, N, M>::generate(0x6b65_7374_7265_6c00 + N as u64);
+    let m = Model::<f64, N, M>::of_step_benchmarks();
     let zs = measurements(&m);
     let process = LinearProcess::new(m.phi, m.q);
     let measurement = LinearMeasurement::new(m.h, m.r);

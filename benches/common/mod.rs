@@ -5,6 +5,9 @@
 pub mod adskalman_kf;
 pub mod hand;
 pub mod model;
+// Only the benchmarks that compare estimates check against the reference.
+#[allow(dead_code)]
+pub mod reference;
 pub mod rng;
 // Only the benchmarks with adapters simulate measurements.
 #[allow(dead_code)]

@@ -21,6 +21,8 @@ pub struct Model<T: Real, const N: usize, const M: usize> {
     /// Measurement noise `R`, dense SPD.
     pub r: SMatrix<T, M, M>,
     /// The diagonal of `R` alone.
+    // Not every benchmark times a diagonal `R`.
+    #[allow(dead_code)]
     pub r_diag: SMatrix<T, M, M>,
     /// Initial covariance, dense SPD.
     pub p0: SMatrix<T, N, N>,
@@ -64,6 +66,12 @@ fn radius_bound<const N: usize>(a: &SMatrix<f64, N, N>) -> f64 {
 }
 
 impl<const N: usize, const M: usize> Model<f64, N, M> {
+    /// The step benchmarks' model of size `N` (its seed depends on `N`
+    /// alone, so every benchmark times the same model at a size).
+    pub fn of_step_benchmarks() -> Self {
+        Self::generate(0x6b65_7374_7265_6c00 + N as u64)
+    }
+
     /// The model for seed `seed`.
     pub fn generate(seed: u64) -> Self {
         let mut rng = SplitMix64::new(seed);
@@ -89,6 +97,8 @@ impl<const N: usize, const M: usize> Model<f64, N, M> {
     }
 
     /// The same model in precision `T`.
+    // Not every benchmark times `f32`.
+    #[allow(dead_code)]
     pub fn to<T: Real>(&self) -> Model<T, N, M> {
         Model {
             phi: self.phi.map(lit),

@@ -1,0 +1,237 @@
+//! Paired timing of the dense `kf_step` against its two baselines (the
+//! `adskalman` crate and the hand-written nalgebra filter) on the model of
+//! the `step` benchmark, for a machine whose speed changes while it runs.
+//!
+//! On a shared virtual machine the host's other work slows a process for
+//! tens to hundreds of milliseconds at a time, and not every program alike:
+//! a step that executes more instructions a nanosecond loses more. A
+//! criterion run times one benchmark after another, so one of two filters
+//! compared can fall in a slow period and the other not. Here the three
+//! filters take turns within one process: each round times one chunk of
+//! about a millisecond of steps of each filter (the order rotating from
+//! round to round), so all three see the same periods.
+//!
+//! For each size it prints every filter's median time a step over the
+//! rounds, with the 10th and 90th percentiles, the median over rounds of
+//! the KF's time divided by the faster baseline's in the same round, and
+//! the share of rounds in which the KF was at or below both.
+//!
+//! ```sh
+//! cargo bench --bench paired                  # every size, 300 rounds each
+//! cargo bench --bench paired -- 2 6 --rounds 1000
+//! ```
+//!
+//! Every filter is checked against the hand-written `f64` filter before it
+//! is timed.
+
+mod common;
+
+use std::hint::black_box;
+use std::time::Instant;
+
+use common::adskalman_kf;
+use common::hand::HandKf;
+use common::model::Model;
+use common::reference::{check, CHECK_STEPS};
+use kestrel::models::{LinearMeasurement, LinearProcess};
+use kestrel::nalgebra::{Const, DimMin};
+use kestrel::Ekf;
+
+/// The sizes of the `step` benchmark.
+const SIZES: [usize; 9] = [2, 4, 6, 9, 12, 15, 18, 24, 32];
+
+/// Rounds per size unless `--rounds` says otherwise.
+const DEFAULT_ROUNDS: usize = 300;
+
+/// The most rounds accepted (one to two hours a size).
+const MAX_ROUNDS: usize = 1_000_000;
+
+/// The time a chunk of the KF's steps is sized to.
+const CHUNK_NANOS: f64 = 1.0e6;
+
+/// The filters, in the order of the printed columns.
+const FILTERS: usize = 3;
+
+/// What one size's rounds measured.
+struct Row {
+    n: usize,
+    /// Nanoseconds a step, per round: KF, adskalman, nalgebra.
+    times: [Vec<f64>; FILTERS],
+}
+
+/// The `q`-quantile of `v` (nearest rank), or `None` when `v` is empty.
+fn quantile(v: &[f64], q: f64) -> Option<f64> {
+    let mut s = v.to_vec();
+    s.sort_by(f64::total_cmp);
+    let last = s.len().checked_sub(1)?;
+    s.get((q * last as f64).round() as usize).copied()
+}
+
+/// Nanoseconds a step of `steps` calls of `step`.
+fn time_chunk(step: &mut impl FnMut(), steps: usize) -> f64 {
+    let start = Instant::now();
+    for _ in 0..steps {
+        step();
+    }
+    start.elapsed().as_nanos() as f64 / steps as f64
+}
+
+/// Steps of `step` that take about [`CHUNK_NANOS`] (doubling from one).
+fn chunk_steps(step: &mut impl FnMut()) -> usize {
+    let mut steps = 1;
+    while time_chunk(step, steps) * (steps as f64) < CHUNK_NANOS && steps < 1 << 24 {
+        steps *= 2;
+    }
+    steps
+}
+
+/// Checks the three filters at size `N`, then times `rounds` rounds.
+fn paired<const N: usize, const M: usize>(rounds: usize) -> Row
+where
+    Const<M>: DimMin<Const<M>, Output = Const<M>>,
+{
+    let m = Model::<f64, N, M>::of_step_benchmarks();
+    let process = LinearProcess::new(m.phi, m.q);
+    let measurement = LinearMeasurement::new(m.h, m.r);
+    let mut kf = Ekf::new(m.x0, m.p0).expect("initial covariance");
+    let mut hand = HandKf::new(m.x0, m.p0);
+    let (ads_process, ads_measurement) = adskalman_kf::models(&m, &m.r);
+    let ads = ::adskalman::KalmanFilterNoControl::<f64, Const<N>, Const<M>>::new(
+        &ads_process,
+        &ads_measurement,
+    );
+    let mut est = ::adskalman::StateAndCovariance::<f64, Const<N>>::new(m.x0, m.p0);
+    for _ in 0..CHECK_STEPS {
+        kf.predict(&process, 1.0).expect("predict");
+        kf.update(&measurement, &m.z).expect("update");
+        est = ads.step(&est, &m.z).expect("adskalman step");
+        assert!(hand.step(&m, &m.r, &m.z), "nalgebra step");
+    }
+    check("kf", &m, &m.r, kf.state(), &kf.covariance());
+    check("adskalman", &m, &m.r, est.state(), est.covariance());
+    check("nalgebra", &m, &m.r, &hand.x, &hand.p);
+
+    let mut kf_step = || {
+        kf.predict(&process, 1.0).expect("predict");
+        black_box(kf.update(&measurement, black_box(&m.z)).expect("update"));
+    };
+    let mut ads_step = || est = ads.step(&est, black_box(&m.z)).expect("adskalman step");
+    let mut hand_step = || assert!(hand.step(&m, &m.r, black_box(&m.z)));
+    let chunk = chunk_steps(&mut kf_step);
+    let mut times: [Vec<f64>; FILTERS] = Default::default();
+    for round in 0..rounds {
+        for k in 0..FILTERS {
+            // Each closure is timed by its own instance of `time_chunk`, its
+            // step inlined into the loop as in a criterion benchmark.
+            let filter = (round + k) % FILTERS;
+            let t = match filter {
+                0 => time_chunk(&mut kf_step, chunk),
+                1 => time_chunk(&mut ads_step, chunk),
+                _ => time_chunk(&mut hand_step, chunk),
+            };
+            times[filter].push(t);
+        }
+    }
+    Row { n: N, times }
+}
+
+/// Runs `paired` at size `n`, `None` for a size the `step` benchmark does
+/// not have.
+fn row(n: usize, rounds: usize) -> Option<Row> {
+    Some(match n {
+        2 => paired::<2, 2>(rounds),
+        4 => paired::<4, 4>(rounds),
+        6 => paired::<6, 6>(rounds),
+        9 => paired::<9, 6>(rounds),
+        12 => paired::<12, 6>(rounds),
+        15 => paired::<15, 6>(rounds),
+        18 => paired::<18, 6>(rounds),
+        24 => paired::<24, 6>(rounds),
+        32 => paired::<32, 6>(rounds),
+        _ => return None,
+    })
+}
+
+/// `median (p10–p90)` of `v` in whole nanoseconds.
+fn spread(v: &[f64]) -> String {
+    match (quantile(v, 0.5), quantile(v, 0.1), quantile(v, 0.9)) {
+        (Some(m), Some(lo), Some(hi)) => format!("{m:.0} ({lo:.0}–{hi:.0})"),
+        _ => "no rounds".to_string(),
+    }
+}
+
+fn print(row: &Row) {
+    let [kf, ads, hand] = &row.times;
+    let ratios: Vec<f64> = (0..kf.len()).map(|i| kf[i] / ads[i].min(hand[i])).collect();
+    let at_or_below = ratios.iter().filter(|&&r| r <= 1.0).count();
+    let ratio = quantile(&ratios, 0.5).map_or("no rounds".to_string(), |r| format!("{r:.2}"));
+    println!(
+        "| {} | {} | {} | {} | {ratio} | {at_or_below} of {} |",
+        row.n,
+        spread(kf),
+        spread(ads),
+        spread(hand),
+        ratios.len()
+    );
+}
+
+/// The sizes and the number of rounds from the command line (`cargo bench`
+/// adds `--bench`, which is ignored).
+fn parse(args: &[String]) -> Result<(Vec<usize>, usize), String> {
+    let mut sizes = Vec::new();
+    let mut rounds = DEFAULT_ROUNDS;
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
+        match arg.as_str() {
+            "--bench" => {}
+            "--rounds" => {
+                let value = it.next().ok_or("--rounds needs a number")?;
+                rounds = value
+                    .parse()
+                    .ok()
+                    .filter(|r| (1..=MAX_ROUNDS).contains(r))
+                    .ok_or(format!(
+                        "--rounds {value}: the number of rounds must be 1 to {MAX_ROUNDS}"
+                    ))?;
+            }
+            size => match size.parse() {
+                Ok(n) if SIZES.contains(&n) => sizes.push(n),
+                _ => {
+                    let sizes: Vec<String> = SIZES.iter().map(|n| n.to_string()).collect();
+                    return Err(format!(
+                        "{size}: not a size of the step benchmark (one of {})",
+                        sizes.join(", ")
+                    ));
+                }
+            },
+        }
+    }
+    if sizes.is_empty() {
+        sizes = SIZES.to_vec();
+    }
+    Ok((sizes, rounds))
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let (sizes, rounds) = match parse(&args) {
+        Ok(parsed) => parsed,
+        Err(message) => {
+            eprintln!("paired: {message}");
+            eprintln!("usage: paired [SIZE ...] [--rounds R]");
+            std::process::exit(2);
+        }
+    };
+    println!("ns a step, median over rounds (10th–90th percentile); {rounds} rounds a size");
+    println!();
+    println!(
+        "| n | kf | adskalman | nalgebra | KF ÷ faster (median of rounds) | rounds KF ≤ both |"
+    );
+    println!("|---|---|---|---|---:|---:|");
+    for n in sizes {
+        match row(n, rounds) {
+            Some(r) => print(&r),
+            None => eprintln!("paired: no filters of size {n}"),
+        }
+    }
+}
