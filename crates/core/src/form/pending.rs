@@ -135,9 +135,10 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
     /// store, which the next step's eight-byte load of the index cannot
     /// take from the store buffer: that load, and every access to the
     /// covariance through it, waits until the store reaches the cache. (In
-    /// one benchmark build the two-state step never ran below 75 ns with
-    /// the one-byte store, and at 64–70 ns in four runs of seven with the
-    /// whole one: benchmark notes, thirteenth round.)
+    /// one benchmark build the two-state step ran at 75 ns or more in nine
+    /// rounds of ten with the one-byte store, and at a median of 65–68 ns in
+    /// four runs of seven with the whole one: benchmark notes, thirteenth
+    /// round.)
     fn swap_buffers(&mut self) {
         self.current = 1 - self.current;
     }
