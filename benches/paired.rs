@@ -199,7 +199,7 @@ fn parse(args: &[String]) -> Result<(Vec<usize>, usize), String> {
                 _ => {
                     let sizes: Vec<String> = SIZES.iter().map(|n| n.to_string()).collect();
                     return Err(format!(
-                        "{size}: not a size of the step benchmark (one of {})",
+                        "'{size}' is not a size of the step benchmark (one of {})",
                         sizes.join(", ")
                     ));
                 }
