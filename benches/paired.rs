@@ -11,10 +11,23 @@
 //! about a millisecond of steps of each filter (the order rotating from
 //! round to round), so all three see the same periods.
 //!
+//! The slow periods are the machine's: a physical core shared with another
+//! program's thread runs fewer instructions per cycle for each. Code that
+//! keeps many instructions in flight (the KF step) loses more than code
+//! that waits on one dependent chain (adskalman's step at 2 states). So
+//! each round also times a throughput probe: independent integer and float
+//! operations with no memory traffic, which slowed by 1.4–1.5 × in such
+//! periods (benchmark notes, fourteenth round). A round whose probe took
+//! more than [`CONTENDED`] × the probe's fastest round of the run (every
+//! size) counts as contended. When no round of a run was uncontended, the
+//! fastest is a contended one and the split says nothing: the probe column,
+//! its spread over the fastest, then stays near 1.
+//!
 //! For each size it prints every filter's median time a step over the
 //! rounds, with the 10th and 90th percentiles, the median over rounds of
 //! the KF's time divided by the faster baseline's in the same round, and
-//! the share of rounds in which the KF was at or below both.
+//! the share of rounds in which the KF was at or below both; then the same
+//! ratio over the uncontended and over the contended rounds apart.
 //!
 //! ```sh
 //! cargo bench --bench paired                  # every size, 300 rounds each
@@ -49,14 +62,58 @@ const MAX_ROUNDS: usize = 1_000_000;
 /// The time a chunk of the KF's steps is sized to.
 const CHUNK_NANOS: f64 = 1.0e6;
 
-/// The filters, in the order of the printed columns.
-const FILTERS: usize = 3;
+/// The timed workloads: the three filters, in the order of the printed
+/// columns, and the throughput probe.
+const WORKLOADS: usize = 4;
+
+/// A round whose probe took more than this many times the probe's fastest
+/// round is contended. The probe's two levels are 1.4–1.5 × apart, and
+/// within a level its rounds scatter by about a tenth.
+const CONTENDED: f64 = 1.2;
 
 /// What one size's rounds measured.
 struct Row {
     n: usize,
-    /// Nanoseconds a step, per round: KF, adskalman, nalgebra.
-    times: [Vec<f64>; FILTERS],
+    /// Nanoseconds a step, per round: KF, adskalman, nalgebra, and
+    /// nanoseconds a probe call.
+    times: [Vec<f64>; WORKLOADS],
+}
+
+/// Sixteen rounds of twelve independent integer chains and sixteen
+/// independent float sums: as many instructions in flight as the core
+/// takes, none waiting on memory or on a long chain, so its time follows
+/// the core's throughput, not its latency.
+struct Probe {
+    ints: [u64; 12],
+    floats: [f64; 16],
+}
+
+impl Probe {
+    fn new() -> Self {
+        Self {
+            ints: core::array::from_fn(|i| i as u64),
+            floats: [1.0; 16],
+        }
+    }
+
+    /// Out of line: one copy of the code for every size, so its times
+    /// compare across sizes (inlined into each size's timing loop, its
+    /// registers were allocated differently: 2.5–3.9 × at 32 states).
+    #[inline(never)]
+    fn call(&mut self) {
+        for _ in 0..16 {
+            for (i, a) in self.ints.iter_mut().enumerate() {
+                *a = a.wrapping_add(i as u64) ^ 0x55;
+            }
+            for a in &mut self.floats {
+                *a += 1.0;
+            }
+            // Opaque between rounds, so the compiler neither folds the
+            // rounds together nor keeps more than one round's work.
+            self.ints = black_box(self.ints);
+            self.floats = black_box(self.floats);
+        }
+    }
 }
 
 /// The `q`-quantile of `v` (nearest rank), or `None` when `v` is empty.
@@ -117,19 +174,23 @@ where
     };
     let mut ads_step = || est = ads.step(&est, black_box(&m.z)).expect("adskalman step");
     let mut hand_step = || assert!(hand.step(&m, &m.r, black_box(&m.z)));
+    let mut probe = Probe::new();
+    let mut probe_call = || probe.call();
     let chunk = chunk_steps(&mut kf_step);
-    let mut times: [Vec<f64>; FILTERS] = Default::default();
+    let probe_chunk = chunk_steps(&mut probe_call);
+    let mut times: [Vec<f64>; WORKLOADS] = Default::default();
     for round in 0..rounds {
-        for k in 0..FILTERS {
+        for k in 0..WORKLOADS {
             // Each closure is timed by its own instance of `time_chunk`, its
             // step inlined into the loop as in a criterion benchmark.
-            let filter = (round + k) % FILTERS;
-            let t = match filter {
+            let workload = (round + k) % WORKLOADS;
+            let t = match workload {
                 0 => time_chunk(&mut kf_step, chunk),
                 1 => time_chunk(&mut ads_step, chunk),
-                _ => time_chunk(&mut hand_step, chunk),
+                2 => time_chunk(&mut hand_step, chunk),
+                _ => time_chunk(&mut probe_call, probe_chunk),
             };
-            times[filter].push(t);
+            times[workload].push(t);
         }
     }
     Row { n: N, times }
@@ -160,18 +221,38 @@ fn spread(v: &[f64]) -> String {
     }
 }
 
-fn print(row: &Row) {
-    let [kf, ads, hand] = &row.times;
+/// `median (rounds at or below both of rounds)` of the KF ÷ faster
+/// baseline ratios of the rounds `keep` selects.
+fn ratio_of(ratios: &[f64], keep: impl Fn(usize) -> bool) -> String {
+    let kept: Vec<f64> = (0..ratios.len())
+        .filter(|&i| keep(i))
+        .map(|i| ratios[i])
+        .collect();
+    let at_or_below = kept.iter().filter(|&&r| r <= 1.0).count();
+    match quantile(&kept, 0.5) {
+        Some(r) => format!("{r:.2} ({at_or_below} of {})", kept.len()),
+        None => "no rounds".to_string(),
+    }
+}
+
+/// Prints `row`, its rounds split by the probe's `fastest` round of the run.
+fn print(row: &Row, fastest: f64) {
+    let [kf, ads, hand, probe] = &row.times;
     let ratios: Vec<f64> = (0..kf.len()).map(|i| kf[i] / ads[i].min(hand[i])).collect();
-    let at_or_below = ratios.iter().filter(|&&r| r <= 1.0).count();
-    let ratio = quantile(&ratios, 0.5).map_or("no rounds".to_string(), |r| format!("{r:.2}"));
+    let contended = |i: usize| probe[i] > CONTENDED * fastest;
+    let levels = match (quantile(probe, 0.1), quantile(probe, 0.9)) {
+        (Some(lo), Some(hi)) => format!("{:.2}–{:.2}", lo / fastest, hi / fastest),
+        _ => "no rounds".to_string(),
+    };
     println!(
-        "| {} | {} | {} | {} | {ratio} | {at_or_below} of {} |",
+        "| {} | {} | {} | {} | {} | {} | {} | {levels} |",
         row.n,
         spread(kf),
         spread(ads),
         spread(hand),
-        ratios.len()
+        ratio_of(&ratios, |_| true),
+        ratio_of(&ratios, |i| !contended(i)),
+        ratio_of(&ratios, contended),
     );
 }
 
@@ -223,15 +304,23 @@ fn main() {
         }
     };
     println!("ns a step, median over rounds (10th–90th percentile); {rounds} rounds a size");
-    println!();
     println!(
-        "| n | kf | adskalman | nalgebra | KF ÷ faster (median of rounds) | rounds KF ≤ both |"
+        "KF ÷ faster baseline: median over rounds (rounds with the KF at or below both, of rounds)"
     );
-    println!("|---|---|---|---|---:|---:|");
-    for n in sizes {
-        match row(n, rounds) {
-            Some(r) => print(&r),
-            None => eprintln!("paired: no filters of size {n}"),
-        }
+    println!(
+        "contended: the probe took more than {CONTENDED} × its fastest round of the run; probe: its 10th–90th percentile ÷ its fastest"
+    );
+    println!();
+    println!("| n | kf | adskalman | nalgebra | KF ÷ faster | uncontended | contended | probe |");
+    println!("|---|---|---|---|---|---|---|---|");
+    // Printed once every size has run: the split takes the probe's fastest
+    // round over all of them.
+    let rows: Vec<Row> = sizes.iter().filter_map(|&n| row(n, rounds)).collect();
+    let fastest = rows
+        .iter()
+        .flat_map(|r| r.times[3].iter().copied())
+        .fold(f64::INFINITY, f64::min);
+    for r in &rows {
+        print(r, fastest);
     }
 }

@@ -147,13 +147,21 @@ pub(crate) fn check_noise_cached<T: Real, const N: usize>(
     checked: &SMatrix<T, N, N>,
     what: Quantity,
 ) -> Result<bool, FilterError> {
-    // A slice comparison (a plain loop the compiler vectorises) rather than
-    // the matrix `==`, which walks a generic iterator: ~10× fewer
-    // instructions at N = 15. NaN never compares equal, so it is checked.
-    if q.as_slice() == checked.as_slice() {
+    // NaN never compares equal, so it is checked.
+    if same_values(q.as_slice(), checked.as_slice()) {
         return Ok(false);
     }
     check_noise(q, what).map(|()| true)
+}
+
+/// Whether `a` and `b` hold the same values, element for element, by `==`
+/// (NaN equals nothing, `−0` equals `0`), as the slice `==` decides.
+/// Without its early exit the comparison vectorises: no branch per element,
+/// and fewer instructions than the slice `==` at every size (and far fewer
+/// than the matrix `==`, which walks a generic iterator).
+#[inline(always)]
+pub(crate) fn same_values<T: Real>(a: &[T], b: &[T]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).fold(true, |same, (x, y)| same & (x == y))
 }
 
 /// The full check of [`check_noise_cached`], out of line.
@@ -196,6 +204,23 @@ fn diagonally_dominant<T: Real, const N: usize>(a: &SMatrix<T, N, N>) -> bool {
 mod tests {
     use super::*;
     use nalgebra::Matrix3;
+
+    #[test]
+    fn same_values_is_the_slice_comparison() {
+        let a = [1.0, -0.0, 3.5, f64::MAX, 5.0e-324];
+        assert!(same_values(&a, &a));
+        // `−0 = 0`, as `==` says.
+        assert!(same_values(&a, &[1.0, 0.0, 3.5, f64::MAX, 5.0e-324]));
+        for at in 0..a.len() {
+            let mut b = a;
+            b[at] = 2.0;
+            assert!(!same_values(&a, &b), "differs at {at}");
+            b[at] = f64::NAN;
+            assert!(!same_values(&b, &b), "NaN at {at} equals nothing");
+        }
+        assert!(!same_values(&a, &a[..4]));
+        assert!(same_values::<f32>(&[], &[]));
+    }
 
     /// The three routes of the cached check: equal to the last one,
     /// diagonally dominant, factored; and the refusals they must not hide.

@@ -6,6 +6,8 @@ use core::fmt;
 
 use nalgebra::SMatrix;
 
+use crate::real::finite;
+
 /// The quantity an error is about.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
@@ -226,8 +228,9 @@ pub(crate) fn first_non_finite<T: crate::Real>(values: &[T]) -> Option<usize> {
 fn all_finite<T: crate::Real>(values: &[T]) -> bool {
     const LANES: usize = 8;
     if values.len() < 2 * LANES {
-        // Short vectors: the lanes would cost more than they save.
-        return values.iter().all(|v| v.is_finite());
+        // Short vectors: the lanes would cost more than they save. No early
+        // exit either: the compiler tests the values two or four at a time.
+        return values.iter().fold(true, |ok, &v| ok & finite(v));
     }
     let mut lanes = [T::zero(); LANES];
     let mut chunks = values.chunks_exact(LANES);
@@ -320,5 +323,38 @@ mod tests {
         }
         assert_eq!(first_non_finite::<f32>(&[]), None);
         assert_eq!(first_non_finite(&[0.0_f32, f32::INFINITY]), Some(1));
+    }
+
+    /// The short path (fewer than 16 values): every length, every position.
+    #[test]
+    fn finds_the_first_non_finite_element_of_short_vectors() {
+        assert_eq!(first_non_finite(&[f64::MAX, f64::MIN, 5.0e-324]), None);
+        for len in 1..16 {
+            let mut v = [0.0_f64; 15];
+            // Finite in `f32` too, for the narrowed copy below.
+            v[0] = 1.0e30;
+            v[len - 1] = -5.0e-324;
+            assert_eq!(first_non_finite(&v[..len]), None, "length {len}");
+            for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+                for at in 0..len {
+                    let mut w = v;
+                    w[at] = bad;
+                    assert_eq!(
+                        first_non_finite(&w[..len]),
+                        Some(at),
+                        "{bad} at {at} of {len}"
+                    );
+                    let mut narrow = [0.0_f32; 15];
+                    for (n, &x) in narrow.iter_mut().zip(&w) {
+                        *n = x as f32;
+                    }
+                    assert_eq!(
+                        first_non_finite(&narrow[..len]),
+                        Some(at),
+                        "f32: {bad} at {at}"
+                    );
+                }
+            }
+        }
     }
 }

@@ -2,7 +2,7 @@
 
 use nalgebra::SMatrix;
 
-use crate::contract::check_covariance;
+use crate::contract::{check_covariance, same_values};
 use crate::{FilterError, Quantity, Real};
 
 /// The last `Q` or `R` a form checked and its Cholesky factor, in the
@@ -38,7 +38,7 @@ impl<T: Real, const N: usize> CheckedNoise<T, N> {
         what: Quantity,
     ) -> Result<SMatrix<T, M, M>, FilterError> {
         let len = M * M;
-        if M <= N && self.size == M && self.noise.as_slice()[..len] == *a.as_slice() {
+        if M <= N && self.size == M && same_values(&self.noise.as_slice()[..len], a.as_slice()) {
             return Ok(SMatrix::from_column_slice(&self.factor.as_slice()[..len]));
         }
         self.check_and_keep(a, what)

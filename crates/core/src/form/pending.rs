@@ -134,11 +134,8 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
     /// The index is written whole. `current ^= 1` compiles to a one-byte
     /// store, which the next step's eight-byte load of the index cannot
     /// take from the store buffer: that load, and every access to the
-    /// covariance through it, waits until the store reaches the cache. (In
-    /// one benchmark build the two-state step ran at 75 ns or more in nine
-    /// rounds of ten with the one-byte store, and at a median of 65–68 ns in
-    /// four runs of seven with the whole one: benchmark notes, thirteenth
-    /// round.)
+    /// covariance through it, would wait until the store reaches the cache
+    /// (benchmark notes, thirteenth round; four instructions more a step).
     fn swap_buffers(&mut self) {
         self.current = 1 - self.current;
     }

@@ -12,6 +12,7 @@ use crate::linalg::{
     downdate_in_place, lower_times_transpose, mirror_lower, mul_lower, mul_vector, solve_lower,
     solve_right_cholesky, update_in_place, weighted_rank_one_in_place,
 };
+use crate::real::finite;
 use crate::sigma::{self, MeasuredSigma, MerweParams, Pairs, SigmaWeights};
 use crate::{
     FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace, UpdateOutcome,
@@ -257,7 +258,7 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
         for i in 0..M {
             let d = sz[(i, i)];
             let scale = sz.row(i).norm();
-            let regular = d.is_finite() && d > T::zero() && d * d > tol * scale * scale;
+            let regular = finite(d) && d > T::zero() && d * d > tol * scale * scale;
             if !regular {
                 return Err(not_pd(i));
             }

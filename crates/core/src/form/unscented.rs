@@ -10,6 +10,7 @@ use crate::error::ensure_finite;
 use crate::linalg::{
     cholesky_semidefinite_in_place, mirror_lower, solve_lower, solve_lower_transpose,
 };
+use crate::real::finite;
 use crate::sigma::{self, MerweParams, SigmaWeights};
 use crate::{
     FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace, UpdateOutcome,
@@ -125,7 +126,7 @@ pub(crate) fn effective_jacobian<T: Real, const N: usize, const M: usize>(
     let mut g = *cross;
     solve_lower(s, &mut g);
     solve_lower_transpose(s, &mut g);
-    g.iter().all(|v| v.is_finite()).then(|| g.transpose())
+    g.iter().all(|&v| finite(v)).then(|| g.transpose())
 }
 
 impl<T: Real, const N: usize> Form<T, N> for UnscentedForm<T, N> {

@@ -1,7 +1,7 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::NotPositiveDefinite;
-use crate::real::epsilon;
+use crate::real::{epsilon, finite};
 use crate::Real;
 
 /// `S Sᵀ ← S Sᵀ + v vᵀ` for a lower-triangular factor `S`, by Givens
@@ -111,7 +111,7 @@ pub(crate) fn update_in_place<T: Real, const N: usize>(
         }
         let a = s[k * N + k];
         let r = (a * a + b * b).sqrt();
-        if !r.is_finite() {
+        if !finite(r) {
             return Err(k);
         }
         let c = a / r;
@@ -190,7 +190,7 @@ fn downdate_pivot<T: Real>(col: &mut [T], v: &mut [T], k: usize) -> bool {
     let a = col[k];
     // (a − b)(a + b) keeps the difference accurate when |b| ≈ a.
     let r2 = (a - b) * (a + b);
-    if !(r2 > epsilon::<T>() * a * a && r2.is_finite()) {
+    if !(r2 > epsilon::<T>() * a * a && finite(r2)) {
         return false;
     }
     let r = r2.sqrt();
