@@ -79,7 +79,7 @@ struct Row {
     times: [Vec<f64>; WORKLOADS],
 }
 
-/// Sixteen rounds of twelve independent integer chains and sixteen
+/// Sixteen passes over twelve independent integer chains and sixteen
 /// independent float sums: as many instructions in flight as the core
 /// takes, none waiting on memory or on a long chain, so its time follows
 /// the core's throughput, not its latency.
@@ -108,8 +108,8 @@ impl Probe {
             for a in &mut self.floats {
                 *a += 1.0;
             }
-            // Opaque between rounds, so the compiler neither folds the
-            // rounds together nor keeps more than one round's work.
+            // Opaque between passes, so the compiler neither folds the
+            // passes together nor keeps more than one pass's work.
             self.ints = black_box(self.ints);
             self.floats = black_box(self.floats);
         }
@@ -314,7 +314,7 @@ fn main() {
     println!("| n | kf | adskalman | nalgebra | KF ÷ faster | uncontended | contended | probe |");
     println!("|---|---|---|---|---|---|---|---|");
     // Printed once every size has run: the split takes the probe's fastest
-    // round over all of them.
+    // round over all of them. (`parse` admits only sizes `row` has.)
     let rows: Vec<Row> = sizes.iter().filter_map(|&n| row(n, rounds)).collect();
     let fastest = rows
         .iter()
