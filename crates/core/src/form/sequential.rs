@@ -11,7 +11,6 @@
 use nalgebra::{SMatrix, SVector};
 
 use crate::linalg::mirror_lower;
-use crate::real::finite;
 use crate::{FilterError, Quantity, Real};
 
 pub(crate) struct Sequential<T: Real, const N: usize, const M: usize> {
@@ -42,7 +41,7 @@ pub(crate) fn update<T: Real, const N: usize, const M: usize>(
         let b = p * hi;
         let hb = hi.dot(&b);
         let c = hb + r[(i, i)];
-        if !(finite(c) && c > eps * (hb.abs() + r[(i, i)].abs())) {
+        if !(c.is_finite() && c > eps * (hb.abs() + r[(i, i)].abs())) {
             return Err(FilterError::NotPositiveDefinite {
                 what: Quantity::InnovationCovariance,
                 index: i,
