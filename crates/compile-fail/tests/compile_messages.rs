@@ -25,7 +25,58 @@ const CASE_FLAGS: [&str; 6] = [
     "--diagnostic-width=140",
 ];
 
+/// The test's name, as libtest would list it.
+const NAME: &str = "mistakes_give_messages_that_name_the_cause";
+
+/// libtest's options that take a value, given as the next argument.
+const VALUED: [&str; 6] = [
+    "--test-threads",
+    "--skip",
+    "--format",
+    "--color",
+    "--logfile",
+    "-Z",
+];
+
+/// Whether the command line selects this test, as libtest decides for a
+/// test that is not ignored: a filter runs the tests whose name contains it
+/// (equals it, with `--exact`), `--skip` leaves out those that contain its
+/// value, and `--ignored` runs only ignored tests. `cargo test --workspace
+/// some_filter` then spends no time here.
+fn selected(args: &[String]) -> bool {
+    let exact = args.iter().any(|a| a == "--exact");
+    let matches = |f: &str| if exact { NAME == f } else { NAME.contains(f) };
+    let mut filters = Vec::new();
+    let mut rest = args.iter();
+    while let Some(arg) = rest.next() {
+        if arg == "--ignored" {
+            return false;
+        }
+        if let Some(option) = VALUED.iter().find(|&&o| o == arg) {
+            let value = rest.next();
+            if *option == "--skip" && value.is_some_and(|v| matches(v)) {
+                return false;
+            }
+        } else if let Some(value) = arg.strip_prefix("--skip=") {
+            if matches(value) {
+                return false;
+            }
+        } else if !arg.starts_with('-') {
+            filters.push(arg.as_str());
+        }
+    }
+    filters.is_empty() || filters.into_iter().any(matches)
+}
+
 fn main() {
+    let args: Vec<String> = env::args().skip(1).collect();
+    if !selected(&args) {
+        return;
+    }
+    if args.iter().any(|a| a == "--list") {
+        println!("{NAME}: test");
+        return;
+    }
     // trybuild checks the dependencies first without `--diagnostic-width`
     // and then the cases with it. Cargo keeps the flags in each unit's
     // fingerprint, so the second pass checks the whole dependency graph
