@@ -28,7 +28,8 @@ const CASE_FLAGS: [&str; 6] = [
 /// The test's name, as libtest would list it.
 const NAME: &str = "mistakes_give_messages_that_name_the_cause";
 
-/// libtest's options that take a value, given as the next argument.
+/// libtest's options that take a value, given as the next argument or
+/// after `=`.
 const VALUED: [&str; 6] = [
     "--test-threads",
     "--skip",
@@ -47,22 +48,22 @@ fn selected(args: &[String]) -> bool {
     let exact = args.iter().any(|a| a == "--exact");
     let matches = |f: &str| if exact { NAME == f } else { NAME.contains(f) };
     let mut filters = Vec::new();
-    let mut rest = args.iter();
+    let mut rest = args.iter().map(String::as_str);
     while let Some(arg) = rest.next() {
-        if arg == "--ignored" {
+        let (option, inline) = match arg.split_once('=') {
+            Some((option, value)) if option.starts_with('-') => (option, Some(value)),
+            _ => (arg, None),
+        };
+        if option == "--ignored" {
             return false;
         }
-        if let Some(option) = VALUED.iter().find(|&&o| o == arg) {
-            let value = rest.next();
-            if *option == "--skip" && value.is_some_and(|v| matches(v)) {
+        if VALUED.contains(&option) {
+            let value = inline.or_else(|| rest.next());
+            if option == "--skip" && value.is_some_and(matches) {
                 return false;
             }
-        } else if let Some(value) = arg.strip_prefix("--skip=") {
-            if matches(value) {
-                return false;
-            }
-        } else if !arg.starts_with('-') {
-            filters.push(arg.as_str());
+        } else if !option.starts_with('-') {
+            filters.push(arg);
         }
     }
     filters.is_empty() || filters.into_iter().any(matches)
