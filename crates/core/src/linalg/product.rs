@@ -137,11 +137,9 @@ pub(crate) fn add_products<T, const R: usize, const C: usize, X, Y, const L: usi
 {
     // The size tests here and below are `const` blocks: the compiler then
     // instantiates only the branch taken, where a plain condition on the
-    // same constants instantiates every kernel of every branch (in the
-    // umbrella crate's test suite 4,400 tile functions against 192, and 45 %
-    // less LLVM IR; the workspace's test build 11-35 CPU-seconds shorter).
-    // The steps' instruction counts moved by at most 0.6 % either way
-    // (`step_count`).
+    // same constants instantiates every kernel of every branch (4,400 tile
+    // functions against 192 in the umbrella crate's test suite; figures in
+    // docs/verification.md, "CI").
     if const { R <= COLUMN_ROWS || C < NR } {
         columns(out, init, x, y);
     } else {
@@ -192,7 +190,6 @@ fn tiled<T, const R: usize, const C: usize, X, Y, const L: usize>(
     for jb in (0..full).step_by(NR) {
         column_block::<T, R, C, X, Y, L, NR>(out, init, &x, &y, lower, jb);
     }
-    // The size is a constant of each instantiation: one arm remains.
     match const { C % NR } {
         1 => column_block::<T, R, C, X, Y, L, 1>(out, init, &x, &y, lower, full),
         2 => column_block::<T, R, C, X, Y, L, 2>(out, init, &x, &y, lower, full),
