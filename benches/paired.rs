@@ -2,26 +2,12 @@
 //! `adskalman` crate and the hand-written nalgebra filter) on the model of
 //! the `step` benchmark, for a machine whose speed changes while it runs.
 //!
-//! On a shared virtual machine a process runs slower for tens to hundreds
-//! of milliseconds at a time, and not every program alike: in such periods
-//! the KF step at 2 states lost a quarter of its speed where adskalman's
-//! lost 5 %. A criterion run times one benchmark after another, so one of
-//! two filters compared can fall in a slow period and the other not. Here the three
-//! filters take turns within one process: each round times one chunk of
-//! about a millisecond of steps of each filter (the order rotating from
-//! round to round), so all three see the same periods.
-//!
-//! The slow periods are the machine's: a physical core shared with another
-//! program's thread runs fewer instructions per cycle for each. Code that
-//! keeps many instructions in flight (the KF step) loses more than code
-//! that waits on one dependent chain (adskalman's step at 2 states). So
-//! each round also times a throughput probe: independent integer and float
-//! operations with no memory traffic, which slowed by 1.4–1.5 × in such
-//! periods (benchmark notes, fourteenth round). A round whose probe took
-//! more than [`CONTENDED`] × the probe's fastest round of the run (every
-//! size) counts as contended. When no round of a run was uncontended, the
-//! fastest is a contended one and the split says nothing: the probe column,
-//! its spread over the fastest, then stays near 1.
+//! The three filters take turns within one process, with a throughput
+//! probe, as `common::rounds` describes: a slow period of the machine
+//! falls on all three alike, and a round whose probe was slow counts as
+//! contended. (In such periods the KF step at 2 states lost a quarter of
+//! its speed where adskalman's lost 5 %: code that keeps many instructions
+//! in flight loses more than code that waits on one dependent chain.)
 //!
 //! For each size it prints every filter's median time a step over the
 //! rounds, with the 10th and 90th percentiles, the median over rounds of
@@ -40,12 +26,14 @@
 mod common;
 
 use std::hint::black_box;
-use std::time::Instant;
 
 use common::adskalman_kf;
 use common::hand::HandKf;
 use common::model::Model;
 use common::reference::{check, CHECK_STEPS};
+use common::rounds::{
+    chunk_steps, parse_rounds, probe_levels, quantile, spread, time_chunk, Probe, CONTENDED,
+};
 use kestrel::models::{LinearMeasurement, LinearProcess};
 use kestrel::nalgebra::{Const, DimMin};
 use kestrel::Ekf;
@@ -56,20 +44,9 @@ const SIZES: [usize; 9] = [2, 4, 6, 9, 12, 15, 18, 24, 32];
 /// Rounds per size unless `--rounds` says otherwise.
 const DEFAULT_ROUNDS: usize = 300;
 
-/// The most rounds accepted (one to two hours a size).
-const MAX_ROUNDS: usize = 1_000_000;
-
-/// The time a chunk of the KF's steps is sized to.
-const CHUNK_NANOS: f64 = 1.0e6;
-
 /// The timed workloads: the three filters, in the order of the printed
 /// columns, and the throughput probe.
 const WORKLOADS: usize = 4;
-
-/// A round whose probe took more than this many times the probe's fastest
-/// round is contended. The probe's two levels are 1.4–1.5 × apart, and
-/// within a level its rounds scatter by about a tenth.
-const CONTENDED: f64 = 1.2;
 
 /// What one size's rounds measured.
 struct Row {
@@ -77,69 +54,6 @@ struct Row {
     /// Nanoseconds a step, per round: KF, adskalman, nalgebra, and
     /// nanoseconds a probe call.
     times: [Vec<f64>; WORKLOADS],
-}
-
-/// Sixteen passes over twelve independent integer chains and sixteen
-/// independent float sums: as many instructions in flight as the core
-/// takes, none waiting on memory or on a long chain, so its time follows
-/// the core's throughput, not its latency.
-struct Probe {
-    ints: [u64; 12],
-    floats: [f64; 16],
-}
-
-impl Probe {
-    fn new() -> Self {
-        Self {
-            ints: core::array::from_fn(|i| i as u64),
-            floats: [1.0; 16],
-        }
-    }
-
-    /// Out of line: one copy of the code for every size, so its times
-    /// compare across sizes (inlined into each size's timing loop, its
-    /// registers were allocated differently: 2.5–3.9 × at 32 states).
-    #[inline(never)]
-    fn call(&mut self) {
-        for _ in 0..16 {
-            for (i, a) in self.ints.iter_mut().enumerate() {
-                *a = a.wrapping_add(i as u64) ^ 0x55;
-            }
-            for a in &mut self.floats {
-                *a += 1.0;
-            }
-            // Opaque between passes, so the compiler neither folds the
-            // passes together nor keeps more than one pass's work.
-            self.ints = black_box(self.ints);
-            self.floats = black_box(self.floats);
-        }
-    }
-}
-
-/// The `q`-quantile of `v` (nearest rank), or `None` when `v` is empty.
-fn quantile(v: &[f64], q: f64) -> Option<f64> {
-    let mut s = v.to_vec();
-    s.sort_by(f64::total_cmp);
-    let last = s.len().checked_sub(1)?;
-    s.get((q * last as f64).round() as usize).copied()
-}
-
-/// Nanoseconds a step of `steps` calls of `step`.
-fn time_chunk(step: &mut impl FnMut(), steps: usize) -> f64 {
-    let start = Instant::now();
-    for _ in 0..steps {
-        step();
-    }
-    start.elapsed().as_nanos() as f64 / steps as f64
-}
-
-/// Steps of `step` that take about [`CHUNK_NANOS`] (doubling from one).
-fn chunk_steps(step: &mut impl FnMut()) -> usize {
-    let mut steps = 1;
-    while time_chunk(step, steps) * (steps as f64) < CHUNK_NANOS && steps < 1 << 24 {
-        steps *= 2;
-    }
-    steps
 }
 
 /// Checks the three filters at size `N`, then times `rounds` rounds.
@@ -213,14 +127,6 @@ fn row(n: usize, rounds: usize) -> Option<Row> {
     })
 }
 
-/// `median (p10–p90)` of `v` in whole nanoseconds.
-fn spread(v: &[f64]) -> String {
-    match (quantile(v, 0.5), quantile(v, 0.1), quantile(v, 0.9)) {
-        (Some(m), Some(lo), Some(hi)) => format!("{m:.0} ({lo:.0}–{hi:.0})"),
-        _ => "no rounds".to_string(),
-    }
-}
-
 /// `median (rounds at or below both of rounds)` of the KF ÷ faster
 /// baseline ratios of the rounds `keep` selects.
 fn ratio_of(ratios: &[f64], keep: impl Fn(usize) -> bool) -> String {
@@ -240,57 +146,39 @@ fn print(row: &Row, fastest: f64) {
     let [kf, ads, hand, probe] = &row.times;
     let ratios: Vec<f64> = (0..kf.len()).map(|i| kf[i] / ads[i].min(hand[i])).collect();
     let contended = |i: usize| probe[i] > CONTENDED * fastest;
-    let levels = match (quantile(probe, 0.1), quantile(probe, 0.9)) {
-        (Some(lo), Some(hi)) => format!("{:.2}–{:.2}", lo / fastest, hi / fastest),
-        _ => "no rounds".to_string(),
-    };
+    let levels = probe_levels(probe, fastest);
     println!(
         "| {} | {} | {} | {} | {} | {} | {} | {levels} |",
         row.n,
-        spread(kf),
-        spread(ads),
-        spread(hand),
+        spread(kf, 0),
+        spread(ads, 0),
+        spread(hand, 0),
         ratio_of(&ratios, |_| true),
         ratio_of(&ratios, |i| !contended(i)),
         ratio_of(&ratios, contended),
     );
 }
 
-/// The sizes and the number of rounds from the command line (`cargo bench`
-/// adds `--bench`, which is ignored).
+/// The sizes and the number of rounds from the command line.
 fn parse(args: &[String]) -> Result<(Vec<usize>, usize), String> {
+    let (rounds, rest) = parse_rounds(args)?;
     let mut sizes = Vec::new();
-    let mut rounds = DEFAULT_ROUNDS;
-    let mut it = args.iter();
-    while let Some(arg) = it.next() {
-        match arg.as_str() {
-            "--bench" => {}
-            "--rounds" => {
-                let value = it.next().ok_or("--rounds needs a number")?;
-                rounds = value
-                    .parse()
-                    .ok()
-                    .filter(|r| (1..=MAX_ROUNDS).contains(r))
-                    .ok_or(format!(
-                        "--rounds {value}: the number of rounds must be 1 to {MAX_ROUNDS}"
-                    ))?;
+    for size in &rest {
+        match size.parse() {
+            Ok(n) if SIZES.contains(&n) => sizes.push(n),
+            _ => {
+                let sizes: Vec<String> = SIZES.iter().map(|n| n.to_string()).collect();
+                return Err(format!(
+                    "'{size}' is not a size of the step benchmark (one of {})",
+                    sizes.join(", ")
+                ));
             }
-            size => match size.parse() {
-                Ok(n) if SIZES.contains(&n) => sizes.push(n),
-                _ => {
-                    let sizes: Vec<String> = SIZES.iter().map(|n| n.to_string()).collect();
-                    return Err(format!(
-                        "'{size}' is not a size of the step benchmark (one of {})",
-                        sizes.join(", ")
-                    ));
-                }
-            },
         }
     }
     if sizes.is_empty() {
         sizes = SIZES.to_vec();
     }
-    Ok((sizes, rounds))
+    Ok((sizes, rounds.unwrap_or(DEFAULT_ROUNDS)))
 }
 
 fn main() {

@@ -9,6 +9,9 @@ pub mod model;
 #[allow(dead_code)]
 pub mod reference;
 pub mod rng;
+// Only the benchmarks that time workloads in turns use it.
+#[allow(dead_code)]
+pub mod rounds;
 // Only the benchmarks with adapters simulate measurements.
 #[allow(dead_code)]
 pub mod simulate;
