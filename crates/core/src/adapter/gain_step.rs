@@ -3,7 +3,7 @@ use core::fmt;
 
 use nalgebra::{SMatrix, SVector};
 
-use crate::linalg::{cholesky, lower_times_transpose, mirror_lower, solve_lower};
+use crate::linalg::{cholesky, lower_times_transpose, mirror_lower, solve_lower, Ldl};
 use crate::Real;
 
 /// The two parts of `H P⁻ Hᵀ`: `(H Φ P Φᵀ Hᵀ, H Q Hᵀ)`.
@@ -78,7 +78,8 @@ impl<T: Real, const M: usize> fmt::Debug for Split<'_, T, M> {
 /// ```
 ///
 /// The lifetime is that of the form's data the split may be computed from
-/// on demand; adapters write `&mut GainStep<T, M>` and never name it.
+/// on demand, and of its factorisation of the nominal `C`; adapters write
+/// `&mut GainStep<T, M>` and never name it.
 #[derive(Debug, Clone)]
 pub struct GainStep<'a, T: Real, const M: usize> {
     raw_innovation: SVector<T, M>,
@@ -92,7 +93,15 @@ pub struct GainStep<'a, T: Real, const M: usize> {
     noise_changed: bool,
     rejected: bool,
     covariance: SMatrix<T, M, M>,
-    factor: Option<SMatrix<T, M, M>>,
+    /// The lower Cholesky factor of `covariance` (`None`: not positive
+    /// definite), made when first asked for.
+    factor: OnceCell<Option<SMatrix<T, M, M>>>,
+    /// The form's `L D Lᵀ` of the nominal `C` (its check), while
+    /// `covariance` is that `C`: the NIS the report gives comes from it,
+    /// and the Cholesky factor, if an adapter asks for it, is its `L √D`
+    /// instead of a second factorisation. An adapter that replaces `R`
+    /// first (Sage–Husa) never needs the nominal factor at all.
+    nominal_ldl: Option<&'a Ldl<T, M>>,
     /// The factor `noise` was given by ([`GainStep::set_noise_factor`]).
     noise_factor: Option<SMatrix<T, M, M>>,
     /// `L⁻¹ ν` for the current innovation and factor, once asked for: the
@@ -132,30 +141,58 @@ impl<T: Real, const M: usize> GainStep<'static, T, M> {
             Some(parts) => Split::Ready(parts),
             None => Split::Absent,
         };
-        Self::build(innovation, predicted, split, noise, factor)
+        let factor = OnceCell::from(Some(factor));
+        Self::build(innovation, predicted, split, noise, factor, None)
     }
 }
 
 impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
-    /// Like [`with_factor`](GainStep::with_factor), the split computed by
-    /// `split` only if an adapter asks for it.
+    /// Like [`with_factor`](GainStep::with_factor), given the form's
+    /// `L D Lᵀ` of `H P⁻ Hᵀ + R` (the check that it is positive definite)
+    /// instead of the Cholesky factor.
+    #[inline(always)]
+    pub(crate) fn with_ldl(
+        innovation: SVector<T, M>,
+        predicted: SMatrix<T, M, M>,
+        split: Option<Parts<T, M>>,
+        noise: SMatrix<T, M, M>,
+        ldl: &'a Ldl<T, M>,
+    ) -> Self {
+        let split = match split {
+            Some(parts) => Split::Ready(parts),
+            None => Split::Absent,
+        };
+        Self::build(
+            innovation,
+            predicted,
+            split,
+            noise,
+            OnceCell::new(),
+            Some(ldl),
+        )
+    }
+
+    /// Like [`with_ldl`](GainStep::with_ldl), the split computed by `split`
+    /// only if an adapter asks for it.
     #[inline(always)]
     pub(crate) fn with_lazy_split(
         innovation: SVector<T, M>,
         predicted: SMatrix<T, M, M>,
         split: &'a dyn Fn() -> Parts<T, M>,
         noise: SMatrix<T, M, M>,
-        factor: SMatrix<T, M, M>,
+        ldl: &'a Ldl<T, M>,
     ) -> Self {
+        let split = Split::Lazy {
+            compute: split,
+            parts: OnceCell::new(),
+        };
         Self::build(
             innovation,
             predicted,
-            Split::Lazy {
-                compute: split,
-                parts: OnceCell::new(),
-            },
+            split,
             noise,
-            factor,
+            OnceCell::new(),
+            Some(ldl),
         )
     }
 
@@ -167,7 +204,8 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
         predicted: SMatrix<T, M, M>,
         split: Split<'a, T, M>,
         noise: SMatrix<T, M, M>,
-        factor: SMatrix<T, M, M>,
+        factor: OnceCell<Option<SMatrix<T, M, M>>>,
+        nominal_ldl: Option<&'a Ldl<T, M>>,
     ) -> Self {
         Self {
             raw_innovation: innovation,
@@ -181,7 +219,8 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
             noise_changed: false,
             rejected: false,
             covariance: predicted + noise,
-            factor: Some(factor),
+            factor,
+            nominal_ldl,
             noise_factor: None,
             whitened: Cell::new(None),
         }
@@ -238,7 +277,23 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
     /// Lower Cholesky factor of [`innovation_covariance`](Self::innovation_covariance),
     /// `None` if an adapter made it indefinite.
     pub fn innovation_factor(&self) -> Option<&SMatrix<T, M, M>> {
-        self.factor.as_ref()
+        self.factor
+            .get_or_init(|| match self.nominal_ldl {
+                Some(ldl) => Some(ldl.cholesky_factor()),
+                None => cholesky(&self.covariance).ok(),
+            })
+            .as_ref()
+    }
+
+    /// The NIS of the innovation against `C` as the form built the view,
+    /// before any adapter: from the form's `L D Lᵀ` when it gave one (no
+    /// Cholesky factor needed), else [`mahalanobis`](Self::mahalanobis).
+    #[inline(always)]
+    pub(crate) fn nominal_mahalanobis(&self) -> Option<T> {
+        match self.nominal_ldl {
+            Some(ldl) => Some(ldl.quadratic_form(&self.innovation)),
+            None => self.mahalanobis(),
+        }
     }
 
     /// `νᵀ C⁻¹ ν` for the current innovation and covariance (the NIS); `None`
@@ -265,7 +320,7 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
         if let Some(w) = self.whitened.get() {
             return Some(w);
         }
-        let l = self.factor.as_ref()?;
+        let l = self.innovation_factor()?;
         let mut w = self.innovation;
         solve_lower(l, &mut w);
         self.whitened.set(Some(w));
@@ -274,7 +329,7 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
 
     /// `vᵀ C⁻¹ v` for any `v` with the current covariance.
     pub fn mahalanobis_of(&self, v: &SVector<T, M>) -> Option<T> {
-        let l = self.factor.as_ref()?;
+        let l = self.innovation_factor()?;
         let mut w = *v;
         solve_lower(l, &mut w);
         Some(w.norm_squared())
@@ -393,7 +448,9 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
     fn refresh(&mut self) {
         self.whitened.set(None);
         self.covariance = self.predicted_covariance() + self.noise;
-        self.factor = cholesky(&self.covariance).ok();
+        // Factored when first asked for: a fade then a new `R` factor once.
+        self.factor = OnceCell::new();
+        self.nominal_ldl = None;
     }
 }
 
@@ -454,29 +511,92 @@ mod lazy_split_tests {
             calls.set(calls.get() + 1);
             (Matrix1::new(3.0), Matrix1::new(1.0))
         };
-        fn build<'a>(parts: &'a dyn Fn() -> Parts<f64, 1>) -> GainStep<'a, f64, 1> {
-            let factor = Matrix1::new(3.0); // √(4 + 5)
+        let ldl = Ldl::new(&Matrix1::new(9.0)).unwrap(); // 4 + 5
+        fn build<'a>(
+            parts: &'a dyn Fn() -> Parts<f64, 1>,
+            ldl: &'a Ldl<f64, 1>,
+        ) -> GainStep<'a, f64, 1> {
             GainStep::with_lazy_split(
                 Vector1::new(3.0),
                 Matrix1::new(4.0),
                 parts,
                 Matrix1::new(5.0),
-                factor,
+                ldl,
             )
         }
         // Not asked: never computed.
-        let step = build(&parts);
+        let step = build(&parts, &ldl);
         assert_eq!(step.mahalanobis(), Some(1.0));
         assert_eq!(step.predicted_covariance()[0], 4.0);
         assert_eq!(calls.get(), 0);
         // A fade needs the propagated part: computed once, and the result is
         // that of the split given up front (the type's own example).
-        let mut step = build(&parts);
+        let mut step = build(&parts, &ldl);
         step.fade(2.0);
         assert_eq!(step.innovation_covariance()[0], 12.0);
         assert_eq!(step.split().map(|(p, q)| (p[0], q[0])), Some((3.0, 1.0)));
         step.set_noise(Matrix1::new(10.0));
         assert_eq!(step.innovation_covariance()[0], 17.0);
         assert_eq!(calls.get(), 1);
+    }
+}
+
+#[cfg(test)]
+mod nominal_ldl_tests {
+    use approx::assert_relative_eq;
+    use nalgebra::{Matrix3, Vector3};
+
+    use super::*;
+
+    /// `H P⁻ Hᵀ`, `R` and `ν` of a three-component measurement.
+    fn parts() -> (Matrix3<f64>, Matrix3<f64>, Vector3<f64>) {
+        let a = Matrix3::new(1.0, 0.3, -0.2, 0.1, 2.0, 0.4, -0.5, 0.2, 1.5);
+        let r = Matrix3::new(0.5, 0.1, 0.0, 0.1, 0.4, 0.05, 0.0, 0.05, 0.3);
+        (a * a.transpose(), r, Vector3::new(1.0, -2.0, 0.5))
+    }
+
+    #[test]
+    fn a_view_on_the_forms_ldl_equals_one_on_the_cholesky_factor() {
+        let (hph, r, nu) = parts();
+        let ldl = Ldl::new(&(hph + r)).unwrap();
+        let from_ldl = GainStep::with_ldl(nu, hph, None, r, &ldl);
+        let reference = GainStep::new(nu, hph, None, r).unwrap();
+        // Nothing factored until asked.
+        assert!(from_ldl.factor.get().is_none());
+        let nis = reference.mahalanobis().unwrap();
+        assert_relative_eq!(
+            from_ldl.nominal_mahalanobis().unwrap(),
+            nis,
+            epsilon = 1e-13
+        );
+        assert!(from_ldl.factor.get().is_none(), "the NIS needs no factor");
+        // Asked: L √D, the Cholesky factor to rounding; then the same NIS.
+        let l = from_ldl.innovation_factor().unwrap();
+        assert_relative_eq!(*l, *reference.innovation_factor().unwrap(), epsilon = 1e-14);
+        assert_relative_eq!(from_ldl.mahalanobis().unwrap(), nis, epsilon = 1e-13);
+        assert_relative_eq!(
+            from_ldl.whitened_innovation().unwrap(),
+            reference.whitened_innovation().unwrap(),
+            epsilon = 1e-13
+        );
+    }
+
+    #[test]
+    fn a_new_noise_drops_the_nominal_factorisation() {
+        let (hph, r, nu) = parts();
+        let ldl = Ldl::new(&(hph + r)).unwrap();
+        let mut step = GainStep::with_ldl(nu, hph, None, r, &ldl);
+        let r2 = r * 4.0;
+        step.set_noise(r2);
+        // The factor is that of H P⁻ Hᵀ + 4 R, not L √D of the nominal C.
+        let expected = crate::linalg::cholesky(&(hph + r2)).unwrap();
+        assert_eq!(*step.innovation_factor().unwrap(), expected);
+        let mut w = nu;
+        crate::linalg::solve_lower(&expected, &mut w);
+        assert_eq!(step.mahalanobis(), Some(w.norm_squared()));
+        // An indefinite replacement: no factor, no NIS.
+        step.set_noise(-r2 * 10.0);
+        assert!(step.innovation_factor().is_none());
+        assert!(step.mahalanobis().is_none());
     }
 }

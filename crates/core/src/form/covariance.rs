@@ -1,7 +1,7 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
-use super::outcome::{adapt, factor_of, joseph_gain, nominal_factor, unadapted_update};
+use super::outcome::{adapt, factor_of, joseph_gain, nominal_ldl, unadapted_update};
 use super::pending::PendingCovariance;
 use super::{sequential, FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
@@ -232,11 +232,11 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         // posterior goes into the spare buffer (no copy of the view).
         let (pending, spare) = self.cov.view_and_spare();
         let parts = || pending.split(Some(&h), &hph);
-        let factor = nominal_factor(&hph, &r).or_else(|e| diagnose(|| jacobian().and(Err(e))))?;
+        let ldl = nominal_ldl(&hph, &r).or_else(|e| diagnose(|| jacobian().and(Err(e))))?;
         let mut step = if A::NEEDS_SPLIT {
-            GainStep::with_lazy_split(nu, hph, &parts, r, factor)
+            GainStep::with_lazy_split(nu, hph, &parts, r, &ldl)
         } else {
-            GainStep::with_factor(nu, hph, None, r, factor)
+            GainStep::with_ldl(nu, hph, None, r, &ldl)
         };
         let mut done = adapt(adapter, &mut step);
         let fade = done.step.fade_factor();

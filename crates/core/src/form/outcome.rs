@@ -8,7 +8,7 @@ use crate::adapter::{GainStep, NoiseAdapter};
 use crate::error::ensure_finite;
 use crate::linalg::{
     cholesky, cholesky_semidefinite, joseph_expanded, joseph_factored_noise_negated, solve_lower,
-    solve_lower_transpose, Ldl,
+    solve_right_cholesky, Ldl,
 };
 use crate::{FilterError, Quantity, Real, StateSpace, UpdateOutcome, UpdateReport};
 
@@ -27,18 +27,21 @@ impl<T: Real, const N: usize, const M: usize> Gain<T, N, M> {
     }
 }
 
-/// `−K = −B C⁻¹` from the lower Cholesky factor `L` of `C` and `Bᵀ`:
-/// `Kᵀ = L⁻ᵀ L⁻¹ Bᵀ`, two triangular solves, then one pass that transposes
-/// and negates.
+/// `−K = −B C⁻¹` from the lower Cholesky factor `L` of `C` and `Bᵀ`: one
+/// pass that transposes and negates `Bᵀ`, then the two triangular solves
+/// from the right ([`solve_right_cholesky`]), down the `M` columns of
+/// `−B`, each pivot one scaled subtraction of a whole `N`-long column
+/// (the left-hand solves of `Bᵀ` ran one row of `B` at a time through the
+/// `M` pivots, scalar code at `M = 6`). The solves are linear and negation
+/// is exact, so this is `−(L⁻ᵀ L⁻¹ Bᵀ)ᵀ` bit for bit.
 #[inline]
 pub(crate) fn negated_kalman_gain<T: Real, const N: usize, const M: usize>(
     factor: &SMatrix<T, M, M>,
     cross_t: &SMatrix<T, M, N>,
 ) -> SMatrix<T, N, M> {
-    let mut kt = *cross_t;
-    solve_lower(factor, &mut kt);
-    solve_lower_transpose(factor, &mut kt);
-    SMatrix::from_fn(|i, j| -kt[(j, i)])
+    let mut negated_k = SMatrix::from_fn(|i, j| -cross_t[(j, i)]);
+    solve_right_cholesky(factor, &mut negated_k);
+    negated_k
 }
 
 /// The gain `K = B C⁻¹` (two triangular solves on `Bᵀ`) and the expanded
@@ -213,15 +216,18 @@ pub(crate) fn not_pd(index: usize) -> FilterError {
     }
 }
 
-/// The lower Cholesky factor of `H P⁻ Hᵀ + R` as the model gives them:
+/// The `L D Lᵀ` factorisation of `H P⁻ Hᵀ + R` as the model gives them:
 /// the check that the nominal innovation covariance is positive definite,
-/// before any adapter runs, failing with the pivot index.
+/// before any adapter runs, failing with the pivot index (that of
+/// [`cholesky`]). The view takes its NIS from it, and derives the Cholesky
+/// factor from it only if an adapter asks before replacing `R` (benchmark
+/// notes, eighteenth round).
 #[inline(always)]
-pub(crate) fn nominal_factor<T: Real, const M: usize>(
+pub(crate) fn nominal_ldl<T: Real, const M: usize>(
     predicted: &SMatrix<T, M, M>,
     noise: &SMatrix<T, M, M>,
-) -> Result<SMatrix<T, M, M>, FilterError> {
-    cholesky(&(predicted + noise)).map_err(|e| not_pd(e.index))
+) -> Result<Ldl<T, M>, FilterError> {
+    Ldl::new(&(predicted + noise)).map_err(|e| not_pd(e.index))
 }
 
 /// Runs the adapters on a freshly built view, in place (the view is a few
@@ -231,7 +237,7 @@ pub(crate) fn adapt<'s, 'a, T: Real, const M: usize, A: NoiseAdapter<T, M>>(
     adapter: &mut A,
     step: &'s mut GainStep<'a, T, M>,
 ) -> AdaptedStep<'s, 'a, T, M, A::Report> {
-    let nis = step.mahalanobis().unwrap_or_else(T::zero);
+    let nis = step.nominal_mahalanobis().unwrap_or_else(T::zero);
     let mut adapters = A::Report::default();
     adapter.before_gain(step, &mut adapters);
     AdaptedStep {

@@ -1,7 +1,7 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
-use super::outcome::{adapt, factor_of, joseph_gain, nominal_factor, unadapted_update};
+use super::outcome::{adapt, factor_of, joseph_gain, nominal_ldl, unadapted_update};
 use super::pending::PendingCovariance;
 use super::{FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
@@ -215,8 +215,8 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             let h = effective_jacobian(&s, &measured.cross);
             self.cov.split(h.as_ref(), &pzz)
         });
-        let nominal = nominal_factor(&pzz, &r)?;
-        let mut step = GainStep::with_factor(nu, pzz, split, r, nominal);
+        let ldl = nominal_ldl(&pzz, &r)?;
+        let mut step = GainStep::with_ldl(nu, pzz, split, r, &ldl);
         let mut done = adapt(adapter, &mut step);
         let fade = done.step.fade_factor();
         if done.step.is_rejected() {

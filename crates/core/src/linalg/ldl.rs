@@ -139,6 +139,25 @@ impl<T: Real, const M: usize> Ldl<T, M> {
         }
     }
 
+    /// The lower Cholesky factor `L √D` of the factored matrix: the
+    /// factor [`cholesky`](super::cholesky) gives, to rounding, for the
+    /// price of `M` divisions and square roots side by side (none on a
+    /// chain) and one product per element. (`dₖ` is not kept: the update
+    /// without adapters, where every instruction of the two-state step
+    /// shows, never asks for this.)
+    pub fn cholesky_factor(&self) -> SMatrix<T, M, M> {
+        let root: [T; M] = core::array::from_fn(|k| self.inv_d[k].recip().sqrt());
+        SMatrix::from_fn(|i, j| {
+            if i > j {
+                self.l[(i, j)] * root[j]
+            } else if i == j {
+                root[j]
+            } else {
+                T::zero()
+            }
+        })
+    }
+
     /// `vᵀ A⁻¹ v` (`Σ yₖ² / dₖ` for `y = L⁻¹ v`).
     #[inline]
     pub fn quadratic_form(&self, v: &SVector<T, M>) -> T {
@@ -268,6 +287,34 @@ mod tests {
         let mut by_ldl = b;
         Ldl::new(&a).unwrap().solve_in_place(&mut by_ldl);
         assert_relative_eq!(by_ldl, by_cholesky, epsilon = 1e-15, max_relative = 1e-14);
+    }
+
+    #[test]
+    fn its_cholesky_factor_is_the_cholesky_factor_to_rounding() {
+        fn check<const M: usize>() {
+            let a = SMatrix::<f64, M, M>::from_fn(|i, j| ((i * 5 + j * 3) as f64 * 0.71).sin());
+            let c = a * a.transpose() + SMatrix::identity() * 0.5;
+            let l = Ldl::new(&c).unwrap().cholesky_factor();
+            let reference = cholesky(&c).unwrap();
+            assert_relative_eq!(l, reference, epsilon = 1e-14 * reference.amax());
+            // Exactly lower triangular, and L Lᵀ = C.
+            for j in 0..M {
+                for i in 0..j {
+                    assert_eq!(l[(i, j)], 0.0);
+                }
+            }
+            assert_relative_eq!(l * l.transpose(), c, epsilon = 1e-13 * c.amax());
+        }
+        check::<1>();
+        check::<2>();
+        check::<3>();
+        check::<6>();
+        check::<12>();
+        // Hand-computed: [[4, 2], [2, 5]] = [[2, 0], [1, 2]] [[2, 1], [0, 2]].
+        let l = Ldl::new(&Matrix2::new(4.0, 2.0, 2.0, 5.0))
+            .unwrap()
+            .cholesky_factor();
+        assert_eq!(l, Matrix2::new(2.0, 0.0, 1.0, 2.0));
     }
 
     #[test]

@@ -1,5 +1,6 @@
 use nalgebra::SMatrix;
 
+use super::cholesky::UNROLL_FROM;
 use super::product::add_scaled;
 use crate::Real;
 
@@ -26,9 +27,19 @@ pub fn solve_lower<T: Real, const N: usize, const K: usize>(
         for k in 0..N {
             let xk = col[k] * inv[k];
             col[k] = xk;
-            let lk = &ls[k * N + k + 1..k * N + N];
-            for (bi, li) in col[k + 1..].iter_mut().zip(lk) {
-                *bi -= *li * xk;
+            if N < UNROLL_FROM {
+                // Constant trip counts, the bound as a condition: the
+                // compiler unrolls the whole column (the same arithmetic).
+                for i in 0..N {
+                    if i > k {
+                        col[i] -= ls[k * N + i] * xk;
+                    }
+                }
+            } else {
+                let lk = &ls[k * N + k + 1..k * N + N];
+                for (bi, li) in col[k + 1..].iter_mut().zip(lk) {
+                    *bi -= *li * xk;
+                }
             }
         }
     }
@@ -55,10 +66,19 @@ pub fn solve_lower_transpose<T: Real, const N: usize, const K: usize>(
     for c in 0..K {
         let col = &mut b.as_mut_slice()[c * N..c * N + N];
         for k in (0..N).rev() {
-            let lk = &ls[k * N + k + 1..k * N + N];
             let mut acc = col[k];
-            for (xi, li) in col[k + 1..].iter().zip(lk) {
-                acc -= *li * *xi;
+            if N < UNROLL_FROM {
+                // As in `solve_lower`: unrolled, the same arithmetic.
+                for i in 0..N {
+                    if i > k {
+                        acc -= ls[k * N + i] * col[i];
+                    }
+                }
+            } else {
+                let lk = &ls[k * N + k + 1..k * N + N];
+                for (xi, li) in col[k + 1..].iter().zip(lk) {
+                    acc -= *li * *xi;
+                }
             }
             col[k] = acc * inv[k];
         }
