@@ -25,6 +25,14 @@ enum Split<'a, T: Real, const M: usize> {
 }
 
 impl<T: Real, const M: usize> Split<'_, T, M> {
+    /// The split given up front, or none.
+    fn given(parts: Option<Parts<T, M>>) -> Self {
+        match parts {
+            Some(parts) => Self::Ready(parts),
+            None => Self::Absent,
+        }
+    }
+
     fn get(&self) -> Option<&Parts<T, M>> {
         match self {
             Self::Absent => None,
@@ -137,12 +145,15 @@ impl<T: Real, const M: usize> GainStep<'static, T, M> {
         noise: SMatrix<T, M, M>,
         factor: SMatrix<T, M, M>,
     ) -> Self {
-        let split = match split {
-            Some(parts) => Split::Ready(parts),
-            None => Split::Absent,
-        };
         let factor = OnceCell::from(Some(factor));
-        Self::build(innovation, predicted, split, noise, factor, None)
+        Self::build(
+            innovation,
+            predicted,
+            Split::given(split),
+            noise,
+            factor,
+            None,
+        )
     }
 }
 
@@ -158,18 +169,7 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
         noise: SMatrix<T, M, M>,
         ldl: &'a Ldl<T, M>,
     ) -> Self {
-        let split = match split {
-            Some(parts) => Split::Ready(parts),
-            None => Split::Absent,
-        };
-        Self::build(
-            innovation,
-            predicted,
-            split,
-            noise,
-            OnceCell::new(),
-            Some(ldl),
-        )
+        Self::on_ldl(innovation, predicted, Split::given(split), noise, ldl)
     }
 
     /// Like [`with_ldl`](GainStep::with_ldl), the split computed by `split`
@@ -186,14 +186,20 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
             compute: split,
             parts: OnceCell::new(),
         };
-        Self::build(
-            innovation,
-            predicted,
-            split,
-            noise,
-            OnceCell::new(),
-            Some(ldl),
-        )
+        Self::on_ldl(innovation, predicted, split, noise, ldl)
+    }
+
+    /// The view on the form's `L D Lᵀ`, nothing factored yet.
+    #[inline(always)]
+    fn on_ldl(
+        innovation: SVector<T, M>,
+        predicted: SMatrix<T, M, M>,
+        split: Split<'a, T, M>,
+        noise: SMatrix<T, M, M>,
+        ldl: &'a Ldl<T, M>,
+    ) -> Self {
+        let factor = OnceCell::new();
+        Self::build(innovation, predicted, split, noise, factor, Some(ldl))
     }
 
     /// The view with nothing adapted yet, built in place (no intermediate
