@@ -39,7 +39,7 @@ use std::hint::black_box;
 use common::model::Model;
 use common::reference::{check, CHECK_STEPS};
 use common::rounds::{
-    chunk_steps, parse_rounds, probe_levels, quantile, spread, time_chunk, Probe, CONTENDED,
+    chunk_steps, parse_rounds, probe_levels, spread, time_chunk, Probe, CONTENDED,
 };
 use common::simulate::{measurements, CYCLE};
 use kestrel::adapter::NoiseAdapter;
@@ -256,11 +256,11 @@ fn summary(ratios: &[f64], most: f64, keep: impl Fn(usize) -> bool) -> String {
         .filter(|&i| keep(i))
         .map(|i| ratios[i])
         .collect();
-    let met = kept.iter().filter(|&&r| r <= most).count();
-    match quantile(&kept, 0.5) {
-        Some(_) => format!("{}, {met} of {}", spread(&kept, 2), kept.len()),
-        None => "no rounds".to_string(),
+    if kept.is_empty() {
+        return "no rounds".to_string();
     }
+    let met = kept.iter().filter(|&&r| r <= most).count();
+    format!("{}, {met} of {}", spread(&kept, 2), kept.len())
 }
 
 fn main() {
