@@ -270,8 +270,8 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             .flatten();
         let mut computed = None;
         let factor = factor_of(&c, known, &mut computed)?;
-        let gain = joseph_gain(spare, prior, hp, hph, r_used, r_factor, &c, factor)?;
-        let x_new = space.add(x, &gain.correction(nu_used));
+        let correction = joseph_gain(spare, prior, hp, hph, r_used, r_factor, &c, factor, nu_used)?;
+        let x_new = space.add(x, &correction);
         ensure_finite(&x_new, Quantity::UpdatedState)?;
 
         // Nothing below can fail: the adapters see the update before the

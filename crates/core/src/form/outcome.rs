@@ -12,19 +12,14 @@ use crate::linalg::{
 };
 use crate::{FilterError, Quantity, Real, StateSpace, UpdateOutcome, UpdateReport};
 
-/// The gain of a Kalman update (its covariance is written into the
-/// caller's buffer).
-pub(crate) struct Gain<T: Real, const N: usize, const M: usize> {
-    /// `−K = −B C⁻¹`, negated because the Joseph update takes it so (see
-    /// [`joseph_factored_noise_negated`]).
-    pub negated_k: SMatrix<T, N, M>,
-}
-
-impl<T: Real, const N: usize, const M: usize> Gain<T, N, M> {
-    /// The state correction `K ν` (an exact sign change of `(−K) ν`).
-    pub fn correction(&self, innovation: &SVector<T, M>) -> SVector<T, N> {
-        -(self.negated_k * innovation)
-    }
+/// The state correction `K ν` from the negated gain `−K` (an exact sign
+/// change of `(−K) ν`).
+#[inline(always)]
+fn correction<T: Real, const N: usize, const M: usize>(
+    negated_k: &SMatrix<T, N, M>,
+    innovation: &SVector<T, M>,
+) -> SVector<T, N> {
+    -(negated_k * innovation)
 }
 
 /// `−K = −B C⁻¹` from the lower Cholesky factor `L` of `C` and `Bᵀ`: one
@@ -51,6 +46,9 @@ pub(crate) fn negated_kalman_gain<T: Real, const N: usize, const M: usize>(
 /// (`H P⁻ Hᵀ` or `P_zz`), the noise `noise` (with its lower Cholesky factor
 /// `noise_factor` when the caller has it) and `c = predicted + noise`.
 /// `factor` is the lower Cholesky factor of `c` (see [`factor_of`]).
+/// Returns the state correction `K ν` for the innovation `innovation`: the
+/// gain itself stays here (moved out by value it was copied twice a step,
+/// `N M` elements each; benchmark notes, nineteenth round).
 ///
 /// `R` enters the covariance through its factor
 /// ([`joseph_factored_noise`](crate::linalg::joseph_factored_noise)):
@@ -67,18 +65,20 @@ pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
     noise_factor: Option<&SMatrix<T, M, M>>,
     c: &SMatrix<T, M, M>,
     factor: &SMatrix<T, M, M>,
-) -> Result<Gain<T, N, M>, FilterError> {
+    innovation: &SVector<T, M>,
+) -> Result<SVector<T, N>, FilterError> {
     let negated_k = negated_kalman_gain(factor, cross_t);
     joseph_with_gain(
         covariance,
         prior,
-        negated_k,
+        &negated_k,
         cross_t,
         predicted,
         noise,
         noise_factor,
         c,
-    )
+    )?;
+    Ok(correction(&negated_k, innovation))
 }
 
 /// The Joseph update of [`joseph_gain`] for a gain `−K` already formed.
@@ -87,26 +87,23 @@ pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
 fn joseph_with_gain<T: Real, const N: usize, const M: usize>(
     covariance: &mut SMatrix<T, N, N>,
     prior: &SMatrix<T, N, N>,
-    negated_k: SMatrix<T, N, M>,
+    negated_k: &SMatrix<T, N, M>,
     cross_t: &SMatrix<T, M, N>,
     predicted: &SMatrix<T, M, M>,
     noise: &SMatrix<T, M, M>,
     noise_factor: Option<&SMatrix<T, M, M>>,
     c: &SMatrix<T, M, M>,
-) -> Result<Gain<T, N, M>, FilterError> {
+) -> Result<(), FilterError> {
     let b = cross_t.transpose();
     match noise_factor {
-        Some(l) => joseph_factored_noise_negated(covariance, prior, &negated_k, &b, predicted, l),
+        Some(l) => joseph_factored_noise_negated(covariance, prior, negated_k, &b, predicted, l),
         // An R an adapter set: factor it here.
         None => match cholesky_semidefinite(noise) {
-            Ok(l) => {
-                joseph_factored_noise_negated(covariance, prior, &negated_k, &b, predicted, &l)
-            }
+            Ok(l) => joseph_factored_noise_negated(covariance, prior, negated_k, &b, predicted, &l),
             Err(_) => *covariance = joseph_expanded(prior, &-negated_k, &b, c),
         },
     }
-    ensure_finite(covariance, Quantity::UpdatedCovariance)?;
-    Ok(Gain { negated_k })
+    ensure_finite(covariance, Quantity::UpdatedCovariance)
 }
 
 /// The update without adapters, for the cross covariance `B = P⁻ Hᵀ` (or
@@ -140,21 +137,31 @@ where
     let c = predicted + noise;
     let ldl = Ldl::new(&c).map_err(|e| not_pd(e.index))?;
     let nis = ldl.quadratic_form(&innovation);
-    let mut kt = *cross_t;
-    ldl.solve_in_place(&mut kt);
-    let negated_k = SMatrix::from_fn(|i, j| -kt[(j, i)]);
+    // The same gain bit for bit either way. The right-hand solves work down
+    // the columns of `K`, which vectorises when they are longer than its
+    // rows: 4 % of the `f32` step's instructions at 15 states; where
+    // `N = M` they cost more (benchmark notes, nineteenth round).
+    let negated_k = if const { N > M } {
+        let mut negated_k = SMatrix::from_fn(|i, j| -cross_t[(j, i)]);
+        ldl.solve_right_in_place(&mut negated_k);
+        negated_k
+    } else {
+        let mut kt = *cross_t;
+        ldl.solve_in_place(&mut kt);
+        SMatrix::from_fn(|i, j| -kt[(j, i)])
+    };
     let spare = cov.spare();
-    let gain = joseph_with_gain(
+    joseph_with_gain(
         spare,
         prior,
-        negated_k,
+        &negated_k,
         cross_t,
         predicted,
         &noise,
         Some(noise_factor),
         &c,
     )?;
-    let x_new = space.add(x, &gain.correction(&innovation));
+    let x_new = space.add(x, &correction(&negated_k, &innovation));
     ensure_finite(&x_new, Quantity::UpdatedState)?;
     *x = x_new;
     let fade = cov.total_fade(T::one());

@@ -248,7 +248,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             .flatten();
         let mut computed = None;
         let factor = factor_of(&c, known, &mut computed)?;
-        let gain = joseph_gain(
+        let correction = joseph_gain(
             self.cov.spare(),
             prior,
             &measured.cross.transpose(),
@@ -257,8 +257,9 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             r_factor,
             &c,
             factor,
+            nu_used,
         )?;
-        let x_new = space.add(x, &gain.correction(nu_used));
+        let x_new = space.add(x, &correction);
         ensure_finite(&x_new, Quantity::UpdatedState)?;
 
         *x = x_new;
