@@ -33,3 +33,24 @@ pub fn measurements<const N: usize, const M: usize>(m: &Model<f64, N, M>) -> Vec
         })
         .collect()
 }
+
+/// `steps` predict + update steps of the EKF with `adapter` (`()` for none)
+/// over the cycle of [`measurements`], for instruction counts: the model of
+/// the step benchmarks, its dense `R` (the batch update), each report handed
+/// to `black_box`.
+pub fn cycle_steps<A, const N: usize, const M: usize>(adapter: A, steps: usize)
+where
+    A: kestrel::adapter::NoiseAdapter<f64, M>,
+{
+    use kestrel::models::{LinearMeasurement, LinearProcess};
+    use std::hint::black_box;
+    let m = Model::<f64, N, M>::of_step_benchmarks();
+    let zs = measurements(&m);
+    let process = LinearProcess::new(m.phi, m.q);
+    let measurement = LinearMeasurement::new(m.h, m.r);
+    let mut f = kestrel::Ekf::new(m.x0, m.p0).unwrap().with_adapter(adapter);
+    for z in zs.iter().cycle().take(steps) {
+        f.predict(&process, 1.0).expect("predict");
+        black_box(f.update(&measurement, black_box(z)).expect("update"));
+    }
+}

@@ -1,0 +1,91 @@
+//! A fixed number of predict + update steps of the EKF with one noise
+//! adapter (or paper 000's compositions) over the simulated measurement
+//! cycle of the `adapters` benchmark, with that benchmark's parameters, for
+//! instruction counts that do not depend on the machine's load:
+//!
+//! ```sh
+//! cargo bench --bench adapter_count --no-run          # prints the binary's path
+//! valgrind --tool=callgrind --callgrind-out-file=/dev/null BINARY sage_husa 15 2000
+//! valgrind --tool=callgrind --callgrind-out-file=/dev/null BINARY sage_husa 15 0
+//! ```
+//!
+//! The difference of the two totals ("Collected") divided by 2000 is the
+//! count per step; the overhead of an adapter is its count over `plain`'s in
+//! the same binary. Adapters: `plain` (none), `sage_husa`,
+//! `divergence_fading` (`γ = 3`), `strong_tracking` (`ρ = 0.95`, `β = 1`),
+//! `outlier_compression` (`α = 0.05`), `improved_adaptive`
+//! (`ImprovedAdaptive::paper000`), `sage_husa_fading`
+//! (`SageHusaFading::paper000`), `huber_inflation`, `chi_square_gate`
+//! (`α = 0.01`), `windowed_noise` (window 10); not `fuzzy_gain`, whose inputs
+//! the caller sets every epoch. Sizes 6, 15 and 18 with `M = 6`.
+//!
+//! `step_count` counts the plain and the `ImprovedAdaptive` EKF on the same
+//! cycle (`kf_cycle`, `kf_improved_cycle`) as it has since the adapter work
+//! began; this is a binary of its own so that those counts stay comparable
+//! from round to round. The same code can count differently in the two
+//! binaries by up to a few hundred instructions at 15 states (the compiler
+//! inlines and places it differently when a binary holds more adapters), so
+//! compare an adapter with `plain` from the same binary.
+//!
+//! Without arguments (as `cargo bench` runs it) it prints this usage.
+
+#[allow(dead_code)]
+mod common;
+
+use common::simulate::cycle_steps;
+use kestrel::adaptive::{
+    ChiSquareGate, DivergenceFading, HuberInflation, ImprovedAdaptive, OutlierCompression,
+    SageHusa, SageHusaFading, StrongTracking, WindowedNoise,
+};
+
+/// `steps` steps with the adapter named `name` at `N` states; `false` for a
+/// name it does not know.
+fn steps_of<const N: usize>(name: &str, steps: usize) -> bool {
+    const M: usize = 6;
+    match name {
+        "plain" => cycle_steps::<_, N, M>((), steps),
+        "sage_husa" => cycle_steps::<_, N, M>(SageHusa::paper().unwrap(), steps),
+        "divergence_fading" => {
+            cycle_steps::<_, N, M>(DivergenceFading::new(3.0, 100.0).unwrap(), steps)
+        }
+        "strong_tracking" => cycle_steps::<_, N, M>(StrongTracking::new(0.95, 1.0).unwrap(), steps),
+        "outlier_compression" => {
+            cycle_steps::<_, N, M>(OutlierCompression::paper().unwrap(), steps)
+        }
+        "improved_adaptive" => cycle_steps::<_, N, M>(ImprovedAdaptive::paper000().unwrap(), steps),
+        "sage_husa_fading" => cycle_steps::<_, N, M>(SageHusaFading::paper000().unwrap(), steps),
+        "huber_inflation" => cycle_steps::<_, N, M>(HuberInflation::paper().unwrap(), steps),
+        "chi_square_gate" => cycle_steps::<_, N, M>(ChiSquareGate::new(0.01).unwrap(), steps),
+        "windowed_noise" => {
+            cycle_steps::<_, N, M>(WindowedNoise::<f64, M, 10>::new(1e-3).unwrap(), steps)
+        }
+        _ => return false,
+    }
+    true
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let parsed = match args.as_slice() {
+        [name, n, steps] => n
+            .parse::<usize>()
+            .ok()
+            .zip(steps.parse::<usize>().ok())
+            .map(|(n, steps)| (name.as_str(), n, steps)),
+        _ => None,
+    };
+    let Some((name, n, steps)) = parsed else {
+        eprintln!("usage: adapter_count ADAPTER N STEPS (see the source's header)");
+        return;
+    };
+    let known = match n {
+        6 => steps_of::<6>(name, steps),
+        15 => steps_of::<15>(name, steps),
+        18 => steps_of::<18>(name, steps),
+        _ => false,
+    };
+    if !known {
+        eprintln!("unknown adapter or size: {name} {n}");
+        std::process::exit(2);
+    }
+}
