@@ -219,7 +219,10 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             let hp = h * prior;
             let hph = sandwich_transposed(&hp, &h);
             let noise = (r, r_factor);
-            return unadapted_update(&mut self.cov, x, space, &prior, &hp, &hph, noise, nu)
+            // `B = P⁻ Hᵀ = (H P⁻)ᵀ`, as the gain's right-hand solves and the
+            // Joseph update take it.
+            let cross = hp.transpose();
+            return unadapted_update(&mut self.cov, x, space, &prior, &cross, &hph, noise, nu)
                 .or_else(|e| diagnose(|| jacobian().and(Err(e))));
         }
 
@@ -270,7 +273,17 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             .flatten();
         let mut computed = None;
         let factor = factor_of(&c, known, &mut computed)?;
-        let correction = joseph_gain(spare, prior, hp, hph, r_used, r_factor, &c, factor, nu_used)?;
+        let correction = joseph_gain(
+            spare,
+            prior,
+            &hp.transpose(),
+            hph,
+            r_used,
+            r_factor,
+            &c,
+            factor,
+            nu_used,
+        )?;
         let x_new = space.add(x, &correction);
         ensure_finite(&x_new, Quantity::UpdatedState)?;
 

@@ -22,27 +22,27 @@ fn correction<T: Real, const N: usize, const M: usize>(
     -(negated_k * innovation)
 }
 
-/// `−K = −B C⁻¹` from the lower Cholesky factor `L` of `C` and `Bᵀ`: one
-/// pass that transposes and negates `Bᵀ`, then the two triangular solves
-/// from the right ([`solve_right_cholesky`]), down the `M` columns of
-/// `−B`, each pivot one scaled subtraction of a whole `N`-long column
-/// (the left-hand solves of `Bᵀ` ran one row of `B` at a time through the
-/// `M` pivots, scalar code at `M = 6`). The solves are linear and negation
-/// is exact, so this is `−(L⁻ᵀ L⁻¹ Bᵀ)ᵀ` bit for bit.
+/// `−K = −B C⁻¹` from the lower Cholesky factor `L` of `C` and `B`: `−B`,
+/// then the two triangular solves from the right
+/// ([`solve_right_cholesky`]), down the `M` columns, each pivot one scaled
+/// subtraction of a whole `N`-long column (the left-hand solves of `Bᵀ` ran
+/// one row of `B` at a time through the `M` pivots, scalar code at
+/// `M = 6`). The solves are linear and negation is exact, so this is
+/// `−(L⁻ᵀ L⁻¹ Bᵀ)ᵀ` bit for bit.
 #[inline]
 pub(crate) fn negated_kalman_gain<T: Real, const N: usize, const M: usize>(
     factor: &SMatrix<T, M, M>,
-    cross_t: &SMatrix<T, M, N>,
+    cross: &SMatrix<T, N, M>,
 ) -> SMatrix<T, N, M> {
-    let mut negated_k = SMatrix::from_fn(|i, j| -cross_t[(j, i)]);
+    let mut negated_k = SMatrix::from_fn(|i, j| -cross[(i, j)]);
     solve_right_cholesky(factor, &mut negated_k);
     negated_k
 }
 
 /// The gain `K = B C⁻¹` (two triangular solves on `Bᵀ`) and the expanded
 /// Joseph update of `prior` (written into `covariance`), for the cross
-/// covariance `B = P⁻ Hᵀ` (or `P_xz`), given transposed, the predicted
-/// measurement covariance `predicted`
+/// covariance `B = P⁻ Hᵀ` (or `P_xz`), the predicted measurement covariance
+/// `predicted`
 /// (`H P⁻ Hᵀ` or `P_zz`), the noise `noise` (with its lower Cholesky factor
 /// `noise_factor` when the caller has it) and `c = predicted + noise`.
 /// `factor` is the lower Cholesky factor of `c` (see [`factor_of`]).
@@ -59,7 +59,7 @@ pub(crate) fn negated_kalman_gain<T: Real, const N: usize, const M: usize>(
 pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
     covariance: &mut SMatrix<T, N, N>,
     prior: &SMatrix<T, N, N>,
-    cross_t: &SMatrix<T, M, N>,
+    cross: &SMatrix<T, N, M>,
     predicted: &SMatrix<T, M, M>,
     noise: &SMatrix<T, M, M>,
     noise_factor: Option<&SMatrix<T, M, M>>,
@@ -67,12 +67,12 @@ pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
     factor: &SMatrix<T, M, M>,
     innovation: &SVector<T, M>,
 ) -> Result<SVector<T, N>, FilterError> {
-    let negated_k = negated_kalman_gain(factor, cross_t);
+    let negated_k = negated_kalman_gain(factor, cross);
     joseph_with_gain(
         covariance,
         prior,
         &negated_k,
-        cross_t,
+        cross,
         predicted,
         noise,
         noise_factor,
@@ -88,26 +88,25 @@ fn joseph_with_gain<T: Real, const N: usize, const M: usize>(
     covariance: &mut SMatrix<T, N, N>,
     prior: &SMatrix<T, N, N>,
     negated_k: &SMatrix<T, N, M>,
-    cross_t: &SMatrix<T, M, N>,
+    b: &SMatrix<T, N, M>,
     predicted: &SMatrix<T, M, M>,
     noise: &SMatrix<T, M, M>,
     noise_factor: Option<&SMatrix<T, M, M>>,
     c: &SMatrix<T, M, M>,
 ) -> Result<(), FilterError> {
-    let b = cross_t.transpose();
     match noise_factor {
-        Some(l) => joseph_factored_noise_negated(covariance, prior, negated_k, &b, predicted, l),
+        Some(l) => joseph_factored_noise_negated(covariance, prior, negated_k, b, predicted, l),
         // An R an adapter set: factor it here.
         None => match cholesky_semidefinite(noise) {
-            Ok(l) => joseph_factored_noise_negated(covariance, prior, negated_k, &b, predicted, &l),
-            Err(_) => *covariance = joseph_expanded(prior, &-negated_k, &b, c),
+            Ok(l) => joseph_factored_noise_negated(covariance, prior, negated_k, b, predicted, &l),
+            Err(_) => *covariance = joseph_expanded(prior, &-negated_k, b, c),
         },
     }
     ensure_finite(covariance, Quantity::UpdatedCovariance)
 }
 
 /// The update without adapters, for the cross covariance `B = P⁻ Hᵀ` (or
-/// `P_xz`), given transposed, the predicted measurement covariance
+/// `P_xz`), the predicted measurement covariance
 /// `predicted` (`H P⁻ Hᵀ` or `P_zz`), `R` with its lower Cholesky factor
 /// and the innovation: the Joseph update of `prior` into the spare buffer
 /// of `cov`, made current once it and the updated `x` are checked, and the
@@ -124,7 +123,7 @@ pub(crate) fn unadapted_update<T, const N: usize, const M: usize, R: Default, S,
     x: &mut SVector<T, N>,
     space: &S,
     prior: &SMatrix<T, N, N>,
-    cross_t: &SMatrix<T, M, N>,
+    cross: &SMatrix<T, N, M>,
     predicted: &SMatrix<T, M, M>,
     (noise, noise_factor): (SMatrix<T, M, M>, &SMatrix<T, M, M>),
     innovation: SVector<T, M>,
@@ -142,11 +141,11 @@ where
     // rows: 4 % of the `f32` step's instructions at 15 states; where
     // `N = M` they cost more (benchmark notes, nineteenth round).
     let negated_k = if const { N > M } {
-        let mut negated_k = SMatrix::from_fn(|i, j| -cross_t[(j, i)]);
+        let mut negated_k = SMatrix::from_fn(|i, j| -cross[(i, j)]);
         ldl.solve_right_in_place(&mut negated_k);
         negated_k
     } else {
-        let mut kt = *cross_t;
+        let mut kt = cross.transpose();
         ldl.solve_in_place(&mut kt);
         SMatrix::from_fn(|i, j| -kt[(j, i)])
     };
@@ -155,7 +154,7 @@ where
         spare,
         prior,
         &negated_k,
-        cross_t,
+        cross,
         predicted,
         &noise,
         Some(noise_factor),

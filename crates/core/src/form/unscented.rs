@@ -206,9 +206,17 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         if A::IS_IDENTITY {
             // Nothing to adapt: the adapter round left out (equal to it to
             // rounding, as a test checks).
-            let cross_t = measured.cross.transpose();
             let noise = (r, &r_factor);
-            return unadapted_update(&mut self.cov, x, space, &prior, &cross_t, &pzz, noise, nu);
+            return unadapted_update(
+                &mut self.cov,
+                x,
+                space,
+                &prior,
+                &measured.cross,
+                &pzz,
+                noise,
+                nu,
+            );
         }
 
         let split = A::NEEDS_SPLIT.then(|| {
@@ -251,7 +259,7 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         let correction = joseph_gain(
             self.cov.spare(),
             prior,
-            &measured.cross.transpose(),
+            &measured.cross,
             pzz,
             r_used,
             r_factor,
