@@ -273,16 +273,9 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             .flatten();
         let mut computed = None;
         let factor = factor_of(&c, known, &mut computed)?;
+        let cross = hp.transpose();
         let correction = joseph_gain(
-            spare,
-            prior,
-            &hp.transpose(),
-            hph,
-            r_used,
-            r_factor,
-            &c,
-            factor,
-            nu_used,
+            spare, prior, &cross, hph, r_used, r_factor, &c, factor, nu_used,
         )?;
         let x_new = space.add(x, &correction);
         ensure_finite(&x_new, Quantity::UpdatedState)?;
