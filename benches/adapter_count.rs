@@ -27,7 +27,8 @@
 //! inlines and places it differently when a binary holds more adapters), so
 //! compare an adapter with `plain` from the same binary.
 //!
-//! Without arguments (as `cargo bench` runs it) it prints this usage.
+//! Without arguments, or with `--bench` alone (as `cargo bench` runs it), it
+//! prints its usage; with arguments it cannot read, its usage and exit code 2.
 
 #[allow(dead_code)]
 mod common;
@@ -66,26 +67,31 @@ fn steps_of<const N: usize>(name: &str, steps: usize) -> bool {
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let parsed = match args.as_slice() {
-        [name, n, steps] => n
-            .parse::<usize>()
-            .ok()
-            .zip(steps.parse::<usize>().ok())
-            .map(|(n, steps)| (name.as_str(), n, steps)),
-        _ => None,
-    };
-    let Some((name, n, steps)) = parsed else {
+    let [name, n, steps] = args.as_slice() else {
         eprintln!("usage: adapter_count ADAPTER N STEPS (see the source's header)");
+        // `cargo bench` runs every benchmark with `--bench` and nothing else:
+        // that is not an error; other argument lists are.
+        if !(args.is_empty() || args == ["--bench"]) {
+            std::process::exit(2);
+        }
         return;
     };
-    let known = match n {
-        6 => steps_of::<6>(name, steps),
-        15 => steps_of::<15>(name, steps),
-        18 => steps_of::<18>(name, steps),
-        _ => false,
+    let fail = |message: String| -> ! {
+        eprintln!("adapter_count: {message}");
+        std::process::exit(2);
+    };
+    let Ok(steps) = steps.parse::<usize>() else {
+        fail(format!("STEPS must be a whole number, got `{steps}`"));
+    };
+    let known = match n.as_str() {
+        "6" => steps_of::<6>(name, steps),
+        "15" => steps_of::<15>(name, steps),
+        "18" => steps_of::<18>(name, steps),
+        _ => fail(format!("N must be 6, 15 or 18, got `{n}`")),
     };
     if !known {
-        eprintln!("unknown adapter or size: {name} {n}");
-        std::process::exit(2);
+        fail(format!(
+            "unknown adapter `{name}` (see the source's header)"
+        ));
     }
 }

@@ -39,7 +39,7 @@ pub(crate) fn negated_kalman_gain<T: Real, const N: usize, const M: usize>(
     negated_k
 }
 
-/// The gain `K = B C⁻¹` (two triangular solves on `Bᵀ`) and the expanded
+/// The gain `K = B C⁻¹` (by [`negated_kalman_gain`]) and the expanded
 /// Joseph update of `prior` (written into `covariance`), for the cross
 /// covariance `B = P⁻ Hᵀ` (or `P_xz`), the predicted measurement covariance
 /// `predicted`
