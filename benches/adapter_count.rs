@@ -28,7 +28,8 @@
 //! compare an adapter with `plain` from the same binary.
 //!
 //! Without arguments, or with `--bench` alone (as `cargo bench` runs it), it
-//! prints its usage; with arguments it cannot read, its usage and exit code 2.
+//! prints its usage; with arguments it cannot read, a message saying which
+//! (or the usage, for the wrong number of them) and exit code 2.
 
 #[allow(dead_code)]
 mod common;
