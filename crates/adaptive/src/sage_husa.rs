@@ -2,7 +2,7 @@
 //! (paper 000, eq. 9).
 
 use kestrel_core::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter};
-use kestrel_core::linalg::cholesky;
+use kestrel_core::linalg::FactoredCovariance;
 use kestrel_core::nalgebra::{SMatrix, SVector};
 use kestrel_core::real::lit;
 use kestrel_core::{FilterError, Real};
@@ -72,10 +72,11 @@ pub struct SageHusa<T: Real, const M: usize> {
     forgetting: T,
     /// `b^{k+1}` for the next estimate `k`.
     power: T,
-    estimate: SMatrix<T, M, M>,
-    /// The lower Cholesky factor of `estimate`, from its check (`None`
-    /// while `estimate` is the first update's `R`).
-    factor: Option<SMatrix<T, M, M>>,
+    /// `R̂` while it is the first update's `R`, which is not factored here.
+    nominal: SMatrix<T, M, M>,
+    /// `R̂` with the factor its check computed: from
+    /// [`with_initial`](Self::with_initial) or the first estimate on.
+    factored: Option<FactoredCovariance<T, M>>,
     initialized: bool,
     floor: SVector<T, M>,
     skip_when_faded: bool,
@@ -135,8 +136,8 @@ impl<T: Real, const M: usize> SageHusa<T, M> {
         Self {
             forgetting: b,
             power: b * b,
-            estimate: SMatrix::zeros(),
-            factor: None,
+            nominal: SMatrix::zeros(),
+            factored: None,
             initialized: false,
             floor: SVector::zeros(),
             skip_when_faded: true,
@@ -161,16 +162,13 @@ impl<T: Real, const M: usize> SageHusa<T, M> {
     /// # Errors
     /// `"initial"` unless `r0` is finite and positive definite.
     pub fn with_initial(mut self, r0: SMatrix<T, M, M>) -> Result<Self, FilterError> {
-        let mut r0 = r0;
-        kestrel_core::linalg::mirror_lower(&mut r0);
-        let Ok(factor) = cholesky(&r0) else {
+        let Ok(factored) = FactoredCovariance::new(r0) else {
             return Err(FilterError::InvalidParameter {
                 name: "initial",
                 valid: "a finite, symmetric, positive definite matrix",
             });
         };
-        self.estimate = r0;
-        self.factor = Some(factor);
+        self.factored = Some(factored);
         self.initialized = true;
         Ok(self)
     }
@@ -206,7 +204,10 @@ impl<T: Real, const M: usize> SageHusa<T, M> {
     /// The current estimate `R̂` (zero before the first update unless an
     /// initial value was given).
     pub fn estimate(&self) -> &SMatrix<T, M, M> {
-        &self.estimate
+        match &self.factored {
+            Some(r) => r.matrix(),
+            None => &self.nominal,
+        }
     }
 
     /// The number of estimates made, `k`.
@@ -215,19 +216,19 @@ impl<T: Real, const M: usize> SageHusa<T, M> {
     }
 
     /// Puts `R̂` in place of the step's `R` (taking `R̂_0` from the step the
-    /// first time). `R̂` goes by the factor its check computed, so the form
-    /// does not factor it again: the update uses `L Lᵀ`, `R̂` to rounding.
+    /// first time). `R̂` goes with the factor its check computed, so the
+    /// form does not factor it again.
     pub(crate) fn apply(&mut self, step: &mut GainStep<T, M>, report: &mut SageHusaReport<T>) {
         if self.initialized {
-            match &self.factor {
-                Some(l) => step.set_noise_factor(l),
-                None => step.set_noise(self.estimate),
+            match &self.factored {
+                Some(r) => step.set_factored_noise(r),
+                None => step.set_noise(self.nominal),
             }
         } else {
-            self.estimate = *step.noise();
+            self.nominal = *step.noise();
             self.initialized = true;
         }
-        report.trace = self.estimate.trace();
+        report.trace = self.estimate().trace();
         report.count = self.count;
     }
 
@@ -243,16 +244,16 @@ impl<T: Real, const M: usize> SageHusa<T, M> {
         let d = (T::one() - self.forgetting) / (T::one() - self.power);
         // One pass: (1 − d) R̂ + d (H P Hᵀ + e eᵀ). e eᵀ is exactly
         // symmetric; so is the posterior covariance, and so is the sum.
+        let previous = self.estimate();
         let mut next = SMatrix::from_fn(|i, j| {
             let sample = posterior_covariance[(i, j)] + e[i] * e[j];
-            self.estimate[(i, j)] * (T::one() - d) + sample * d
+            previous[(i, j)] * (T::one() - d) + sample * d
         });
         for i in 0..M {
             next[(i, i)] = next[(i, i)].max(self.floor[i]);
         }
-        if let Ok(factor) = cholesky(&next) {
-            self.estimate = next;
-            self.factor = Some(factor);
+        if let Ok(factored) = FactoredCovariance::new(next) {
+            self.factored = Some(factored);
             self.power *= self.forgetting;
             self.count = self.count.saturating_add(1);
             report.weight = d;

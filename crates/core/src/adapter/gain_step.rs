@@ -3,7 +3,9 @@ use core::fmt;
 
 use nalgebra::{SMatrix, SVector};
 
-use crate::linalg::{cholesky, lower_times_transpose, mirror_lower, solve_lower, Ldl};
+use crate::linalg::{
+    cholesky, lower_times_transpose, mirror_lower, solve_lower, FactoredCovariance, Ldl,
+};
 use crate::Real;
 
 /// The two parts of `H P⁻ Hᵀ`: `(H Φ P Φᵀ Hᵀ, H Q Hᵀ)`.
@@ -398,7 +400,10 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
     /// and keeps `L`: the form then takes `R` into the Joseph update
     /// through it instead of factoring `R` again. An adapter that has the
     /// factor of its `R` anyway (as [`cholesky`] of the estimate, to check
-    /// it) saves a factorisation per update this way.
+    /// it) saves a factorisation per update this way; one that keeps `R`
+    /// as well hands both over by
+    /// [`set_factored_noise`](Self::set_factored_noise), which also spares
+    /// the product `L Lᵀ`.
     ///
     /// `L Lᵀ` is positive semi-definite for any `L`; a non-finite `L` gives
     /// a non-finite `R`, which the form rejects as it does one given to
@@ -424,9 +429,37 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
         self.refresh();
     }
 
+    /// Replaces the measurement noise covariance by `r.matrix()` and keeps
+    /// its factor, as [`set_noise_factor`](Self::set_noise_factor) does but
+    /// without forming `L Lᵀ`: the pair was made together
+    /// ([`FactoredCovariance::new`]), so the form takes `R` into the
+    /// innovation covariance as it is and into the Joseph update through
+    /// `L`, as it takes the model's `R` and its cached factor.
+    ///
+    /// ```
+    /// use kestrel_core::adapter::GainStep;
+    /// use kestrel_core::linalg::FactoredCovariance;
+    /// use kestrel_core::nalgebra::{Matrix2, Vector2};
+    /// let mut step =
+    ///     GainStep::new(Vector2::zeros(), Matrix2::identity(), None, Matrix2::identity()).unwrap();
+    /// let r = FactoredCovariance::new(Matrix2::new(4.0, 2.0, 2.0, 10.0)).unwrap();
+    /// step.set_factored_noise(&r);
+    /// assert_eq!(step.noise(), r.matrix());
+    /// assert_eq!(step.noise_factor(), Some(r.factor()));
+    /// assert!(step.noise_changed());
+    /// assert_eq!(step.innovation_covariance()[(1, 1)], 11.0);
+    /// ```
+    pub fn set_factored_noise(&mut self, r: &FactoredCovariance<T, M>) {
+        self.noise = *r.matrix();
+        self.noise_factor = Some(*r.factor());
+        self.noise_changed = true;
+        self.refresh();
+    }
+
     /// The lower triangular factor of the current `R` when an adapter gave
-    /// `R` by it ([`set_noise_factor`](Self::set_noise_factor)); `None` for
-    /// the model's `R` or one set by [`set_noise`](Self::set_noise).
+    /// `R` by it ([`set_noise_factor`](Self::set_noise_factor),
+    /// [`set_factored_noise`](Self::set_factored_noise)); `None` for the
+    /// model's `R` or one set by [`set_noise`](Self::set_noise).
     pub fn noise_factor(&self) -> Option<&SMatrix<T, M, M>> {
         self.noise_factor.as_ref()
     }

@@ -7,6 +7,7 @@
 //! `P = S Sᵀ`.
 
 mod cholesky;
+mod factored;
 mod ldl;
 mod product;
 mod rank_one;
@@ -15,6 +16,7 @@ mod triangular;
 mod triangularize;
 
 pub use cholesky::{cholesky, cholesky_semidefinite, NotPositiveDefinite};
+pub use factored::FactoredCovariance;
 pub use product::mul_vector;
 pub use rank_one::{rank_one_downdate, rank_one_update, weighted_rank_one};
 pub use symmetric::{
