@@ -10,6 +10,8 @@
 //!   Cholesky factorisation succeeds) after every update, for random seeds,
 //!   random `b ∈ [0.01, 0.999]`, random true and assumed `R`, with and
 //!   without a floor.
+//! - The gain takes `R̂` itself, bit for bit, with the Cholesky factor that
+//!   checked it.
 
 use crate::support;
 
@@ -160,5 +162,54 @@ proptest! {
         let truth = spd2(truth.0, truth.1, truth.2);
         let assumed = spd2(assumed.0, assumed.1, assumed.2);
         each_form!(psd_every_step, (seed, b, truth, assumed, floor));
+    }
+}
+
+/// Records the `R` and its factor that reach the gain.
+#[derive(Debug, Default)]
+struct NoiseProbe {
+    noise: Option<Matrix2<f64>>,
+    factor: Option<Matrix2<f64>>,
+}
+
+impl kestrel_core::adapter::PriorAdapter<f64> for NoiseProbe {}
+
+impl kestrel_core::adapter::NoiseAdapter<f64, 2> for NoiseProbe {
+    type Report = ();
+    fn before_gain(&mut self, step: &mut kestrel_core::adapter::GainStep<f64, 2>, _: &mut ()) {
+        self.noise = Some(*step.noise());
+        self.factor = step.noise_factor().copied();
+    }
+}
+
+/// After the first estimate the gain takes `R̂` itself (not `L Lᵀ`, which
+/// equals it only to rounding) with the Cholesky factor that checked it.
+#[test]
+fn the_gain_takes_the_estimate_itself_with_its_factor() {
+    use kestrel_core::linalg::cholesky;
+    use kestrel_core::Ekf;
+    use kestrel_models::{LinearMeasurement, LinearProcess};
+
+    let process = LinearProcess::new(Matrix2::new(1.0, 0.1, 0.0, 1.0), Matrix2::identity() * 0.01);
+    let sensor = LinearMeasurement::new(Matrix2::new(1.0, 0.0, 0.3, 1.0), r_assumed());
+    let mut f = Ekf::new(Vector2::zeros(), Matrix2::identity())
+        .unwrap()
+        .with_adapter((SageHusa::new(0.9).unwrap(), NoiseProbe::default()));
+    for k in 0..6 {
+        let before = *f.adapter().0.estimate();
+        f.predict(&process, 1.0).unwrap();
+        let z = Vector2::new(0.7 * (k as f64).sin() + 0.3, 0.2 - 0.5 * (k as f64).cos());
+        f.update(&sensor, &z).unwrap();
+        let probe = &f.adapter().1;
+        if k == 0 {
+            // R̂₀ is the model's R, taken as it is, unfactored.
+            assert_eq!(probe.noise, Some(r_assumed()));
+            assert_eq!(probe.factor, None);
+        } else {
+            let noise = probe.noise.unwrap();
+            assert_eq!(noise, before, "update {k}");
+            assert_ne!(noise, r_assumed(), "update {k}: the estimate moved");
+            assert_eq!(probe.factor, Some(cholesky(&before).unwrap()), "update {k}");
+        }
     }
 }
