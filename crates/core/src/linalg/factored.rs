@@ -87,5 +87,16 @@ mod tests {
         assert_eq!(FactoredCovariance::new(a).unwrap_err().index, 2);
         let f32_zero = Matrix3::<f32>::zeros();
         assert_eq!(FactoredCovariance::new(f32_zero).unwrap_err().index, 0);
+        // Overflow on the way is refused, not carried as ∞ or NaN.
+        // (1e308 + 1e308 on the diagonal is ∞: pivot 0.)
+        let huge = Matrix3::from_element(1e308) + Matrix3::identity() * 1e308;
+        assert_eq!(FactoredCovariance::new(huge).unwrap_err().index, 0);
+        // 1e308 on the diagonal, 1e154 off it: the products stay finite.
+        let large: Matrix3<f64> = Matrix3::identity() * 1e308 + Matrix3::from_element(1e154);
+        let f = FactoredCovariance::new(large).unwrap();
+        assert!(f.factor().iter().all(|v: &f64| v.is_finite()));
+        let mut infinite = Matrix3::<f64>::identity();
+        infinite[(1, 0)] = f64::INFINITY;
+        assert!(FactoredCovariance::new(infinite).is_err());
     }
 }
