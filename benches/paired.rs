@@ -15,6 +15,11 @@
 //! the share of rounds in which the KF was at or below both; then the same
 //! ratio over the uncontended and over the contended rounds apart.
 //!
+//! At 2 states a fourth filter takes its turn: the step written out by hand
+//! with every check of the library's step (`common::checked_by_hand`), and
+//! a line after the table sets its time against adskalman's: what a checked
+//! step costs at least, against what the library's generic one costs.
+//!
 //! ```sh
 //! cargo bench --bench paired                  # every size, 300 rounds each
 //! cargo bench --bench paired -- 2 6 --rounds 1000
@@ -28,6 +33,7 @@ mod common;
 use std::hint::black_box;
 
 use common::adskalman_kf;
+use common::checked_by_hand::CheckedByHand;
 use common::hand::HandKf;
 use common::model::Model;
 use common::reference::{check, CHECK_STEPS};
@@ -45,14 +51,21 @@ const SIZES: [usize; 9] = [2, 4, 6, 9, 12, 15, 18, 24, 32];
 const DEFAULT_ROUNDS: usize = 300;
 
 /// The timed workloads: the three filters, in the order of the printed
-/// columns, and the throughput probe.
-const WORKLOADS: usize = 4;
+/// columns, the throughput probe, and (at 2 states only) the step written
+/// out by hand with the library's checks.
+const WORKLOADS: usize = 5;
+
+/// The index of the probe's times.
+const PROBE: usize = 3;
+
+/// The index of the checked step by hand's times (empty above 2 states).
+const BY_HAND: usize = 4;
 
 /// What one size's rounds measured.
 struct Row {
     n: usize,
-    /// Nanoseconds a step, per round: KF, adskalman, nalgebra, and
-    /// nanoseconds a probe call.
+    /// Nanoseconds a step, per round: KF, adskalman, nalgebra,
+    /// nanoseconds a probe call, and (at 2 states) the checked step by hand.
     times: [Vec<f64>; WORKLOADS],
 }
 
@@ -81,6 +94,16 @@ where
     check("kf", &m, &m.r, kf.state(), &kf.covariance());
     check("adskalman", &m, &m.r, est.state(), est.covariance());
     check("nalgebra", &m, &m.r, &hand.x, &hand.p);
+    // The same model at 2 states (used only when `N = 2`).
+    let m2 = Model::<f64, 2, 2>::of_step_benchmarks();
+    let mut by_hand = CheckedByHand::new(m2.x0, &m2.p0).expect("initial covariance");
+    if N == 2 {
+        for _ in 0..CHECK_STEPS {
+            by_hand.predict(&m2.phi, &m2.q, 1.0).expect("predict");
+            by_hand.update(&m2.h, &m2.r, &m2.z).expect("update");
+        }
+        check("checked by hand", &m2, &m2.r, &by_hand.x, &by_hand.p());
+    }
 
     let mut kf_step = || {
         kf.predict(&process, 1.0).expect("predict");
@@ -88,21 +111,31 @@ where
     };
     let mut ads_step = || est = ads.step(&est, black_box(&m.z)).expect("adskalman step");
     let mut hand_step = || assert!(hand.step(&m, &m.r, black_box(&m.z)));
+    let mut by_hand_step = || {
+        by_hand.predict(&m2.phi, &m2.q, 1.0).expect("predict");
+        black_box(
+            by_hand
+                .update(&m2.h, &m2.r, black_box(&m2.z))
+                .expect("update"),
+        );
+    };
     let mut probe = Probe::new();
     let mut probe_call = || probe.call();
     let chunk = chunk_steps(&mut kf_step);
     let probe_chunk = chunk_steps(&mut probe_call);
+    let workloads = if N == 2 { WORKLOADS } else { BY_HAND };
     let mut times: [Vec<f64>; WORKLOADS] = Default::default();
     for round in 0..rounds {
-        for k in 0..WORKLOADS {
+        for k in 0..workloads {
             // Each closure is timed by its own instance of `time_chunk`, its
             // step inlined into the loop as in a criterion benchmark.
-            let workload = (round + k) % WORKLOADS;
+            let workload = (round + k) % workloads;
             let t = match workload {
                 0 => time_chunk(&mut kf_step, chunk),
                 1 => time_chunk(&mut ads_step, chunk),
                 2 => time_chunk(&mut hand_step, chunk),
-                _ => time_chunk(&mut probe_call, probe_chunk),
+                PROBE => time_chunk(&mut probe_call, probe_chunk),
+                _ => time_chunk(&mut by_hand_step, chunk),
             };
             times[workload].push(t);
         }
@@ -127,8 +160,9 @@ fn row(n: usize, rounds: usize) -> Option<Row> {
     })
 }
 
-/// `median (rounds at or below both of rounds)` of the KF ÷ faster
-/// baseline ratios of the rounds `keep` selects.
+/// `median (rounds at or below 1 of rounds)` of the `ratios` of the rounds
+/// `keep` selects (KF ÷ faster baseline: the rounds with the KF at or below
+/// both).
 fn ratio_of(ratios: &[f64], keep: impl Fn(usize) -> bool) -> String {
     let kept: Vec<f64> = (0..ratios.len())
         .filter(|&i| keep(i))
@@ -143,7 +177,7 @@ fn ratio_of(ratios: &[f64], keep: impl Fn(usize) -> bool) -> String {
 
 /// Prints `row`, its rounds split by the probe's `fastest` round of the run.
 fn print(row: &Row, fastest: f64) {
-    let [kf, ads, hand, probe] = &row.times;
+    let [kf, ads, hand, probe, _] = &row.times;
     let ratios: Vec<f64> = (0..kf.len()).map(|i| kf[i] / ads[i].min(hand[i])).collect();
     let contended = |i: usize| probe[i] > CONTENDED * fastest;
     let levels = probe_levels(probe, fastest);
@@ -206,9 +240,35 @@ fn main() {
     let rows: Vec<Row> = sizes.iter().filter_map(|&n| row(n, rounds)).collect();
     let fastest = rows
         .iter()
-        .flat_map(|r| r.times[3].iter().copied())
+        .flat_map(|r| r.times[PROBE].iter().copied())
         .fold(f64::INFINITY, f64::min);
     for r in &rows {
         print(r, fastest);
     }
+    for r in rows.iter().filter(|r| !r.times[BY_HAND].is_empty()) {
+        print_by_hand(r, fastest);
+    }
+}
+
+/// The checked step by hand's time at 2 states, its ratio to adskalman's in
+/// the same round over all, the uncontended and the contended rounds (with
+/// the rounds in which it was at or below adskalman), and the KF's ratio
+/// to it, split alike.
+fn print_by_hand(row: &Row, fastest: f64) {
+    let [kf, ads, _, probe, by_hand] = &row.times;
+    let contended = |i: usize| probe[i] > CONTENDED * fastest;
+    let to_ads: Vec<f64> = (0..by_hand.len()).map(|i| by_hand[i] / ads[i]).collect();
+    let kf_to_it: Vec<f64> = (0..by_hand.len()).map(|i| kf[i] / by_hand[i]).collect();
+    println!();
+    println!(
+        "{} states, the step by hand with the library's checks: {} ns; ÷ adskalman {}, uncontended {}, contended {}; KF ÷ it {}, uncontended {}, contended {}",
+        row.n,
+        spread(by_hand, 0),
+        ratio_of(&to_ads, |_| true),
+        ratio_of(&to_ads, |i| !contended(i)),
+        ratio_of(&to_ads, contended),
+        ratio_of(&kf_to_it, |_| true),
+        ratio_of(&kf_to_it, |i| !contended(i)),
+        ratio_of(&kf_to_it, contended),
+    );
 }

@@ -13,7 +13,9 @@
 //! reading only the report's NIS in place instead of moving the report),
 //! `kf_diag`, `kf_improved` (paper 000's `ImprovedAdaptive`), `ukf`, `srukf`,
 //! `nalgebra`,
-//! `adskalman`, `kf_f32`, `ukf_f32`, `srukf_f32` (f32 at N = 15 only), and
+//! `adskalman`, `checked_by_hand` (the 2-state step written out by hand with
+//! the library's checks, N = 2 only), `kf_f32`, `ukf_f32`, `srukf_f32` (f32
+//! at N = 15 only), and
 //! `kf_cycle`, `kf_improved_cycle`: the plain and the `ImprovedAdaptive` EKF
 //! fed the simulated measurement cycle of the `adapters` benchmark (so the
 //! adapter estimates, compresses and fades as it does there) instead of a
@@ -25,6 +27,7 @@ mod common;
 use std::hint::black_box;
 
 use common::adskalman_kf;
+use common::checked_by_hand::CheckedByHand;
 use common::hand::HandKf;
 use common::model::Model;
 use common::simulate::measurements;
@@ -89,6 +92,18 @@ fn cycle_steps<const N: usize, const M: usize>(improved: bool, steps: usize) -> 
         go(f, &process, &measurement, &zs, steps);
     }
     true
+}
+
+/// `steps` predict + update steps of the 2-state step written out by hand
+/// with the library's checks ([`CheckedByHand`]).
+fn checked_by_hand_steps(steps: usize) {
+    let m = Model::<f64, 2, 2>::of_step_benchmarks();
+    let mut f = CheckedByHand::new(m.x0, &m.p0).expect("initial covariance");
+    for _ in 0..steps {
+        f.predict(&m.phi, &m.q, 1.0).expect("predict");
+        black_box(f.update(&m.h, &m.r, black_box(&m.z)).expect("update"));
+    }
+    black_box(f.x);
 }
 
 fn steps_of<T: Real, const N: usize, const M: usize>(filter: &str, steps: usize) -> bool
@@ -156,6 +171,10 @@ fn main() {
         _ => None,
     };
     let known = match (cycle, filter.strip_suffix("_f32"), n) {
+        (None, _, 2) if filter == "checked_by_hand" => {
+            checked_by_hand_steps(steps);
+            true
+        }
         (Some(improved), _, 2) => cycle_steps::<2, 2>(improved, steps),
         (Some(improved), _, 4) => cycle_steps::<4, 4>(improved, steps),
         (Some(improved), _, 6) => cycle_steps::<6, 6>(improved, steps),

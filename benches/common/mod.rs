@@ -3,6 +3,9 @@
 //! `adskalman` crate).
 
 pub mod adskalman_kf;
+// Only the benchmarks that look at the 2-state step's least cost use it.
+#[allow(dead_code)]
+pub mod checked_by_hand;
 pub mod hand;
 pub mod model;
 // Only the benchmarks that compare estimates check against the reference.
