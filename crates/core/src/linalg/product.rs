@@ -7,16 +7,36 @@
 //! registers over the whole inner dimension, which the compiler unrolls and
 //! vectorises; tiles wholly above the diagonal are skipped when only the
 //! lower triangle is wanted. The columns left over at the edges get tiles of
-//! their own smaller fixed size; so do the rows in `f64`, while in `f32` they
-//! are covered by a full-height tile that overlaps the one before it (the
-//! rows in common computed twice, to the same value).
+//! their own smaller fixed size; so do the rows when a tile's column spans
+//! two vector registers (`f64` on SSE2), while when it is one register
+//! (`f32`, and `f64` with AVX) they are covered by a full-height tile that
+//! overlaps the one before it (the rows in common computed twice, to the
+//! same value). A tile is four rows, or eight for `f32` with AVX.
 
 use nalgebra::{SMatrix, SVector};
 
 use crate::Real;
 
-/// Tile rows: a 4-element column segment is two SSE2 or one AVX register.
-const MR: usize = 4;
+/// Bytes in one vector register of the target the library is built for
+/// (AVX registers with `-C target-cpu=x86-64-v3` or `native`, SSE2 ones by
+/// default).
+const VECTOR_BYTES: usize = if cfg!(target_feature = "avx") { 32 } else { 16 };
+
+/// Elements of `T` in one vector register.
+const fn lanes<T>() -> usize {
+    VECTOR_BYTES / core::mem::size_of::<T>()
+}
+
+/// Tile rows: four (two SSE2 registers of `f64`, one of `f32`, one AVX
+/// register of `f64`), or eight where a register holds eight (`f32` with
+/// AVX), so that a tile's column is whole registers either way.
+const fn tile_rows<T>() -> usize {
+    if lanes::<T>() >= 8 {
+        8
+    } else {
+        4
+    }
+}
 /// Tile columns.
 const NR: usize = 4;
 /// Up to this many rows a whole output column fits in registers, and
@@ -172,8 +192,8 @@ fn columns<T, const R: usize, const C: usize, X, Y, const L: usize>(
 
 /// `MR × NR` tiles held in registers over the whole inner dimension; the
 /// columns left over at the edge (`C mod NR`) get tiles of exactly their
-/// size, and so do the rows left over (`R mod MR`), except in `f32` (see
-/// [`column_block`]).
+/// size, and so do the rows left over (`R mod MR`) unless a tile's column
+/// is one register (see [`column_block`]).
 #[inline(always)]
 fn tiled<T, const R: usize, const C: usize, X, Y, const L: usize>(
     out: &mut SMatrix<T, R, C>,
@@ -186,21 +206,72 @@ fn tiled<T, const R: usize, const C: usize, X, Y, const L: usize>(
     X: Columns<T, R> + ?Sized,
     Y: Columns<T, C> + ?Sized,
 {
+    // The rows left over: when a tile's column is one register, one more
+    // full-height tile ending at the last row, overlapping the tile before
+    // it. The rows in common are computed twice with the same operations in
+    // the same order, so they are written twice with the same value; a
+    // 15-row `f32` column then takes four vector operations rather than
+    // three and three scalar ones (measured: the `f32` KF step at 15 states
+    // 6 % faster). With two registers to a tile's column (`f64` on SSE2) an
+    // edge tile of its own size is as cheap.
+    // (`const` conditions, so only the kernel taken is instantiated.)
+    if const { tile_rows::<T>() == 8 } {
+        tiled_by::<T, R, C, X, Y, L, 8, true>(out, init, x, y, lower);
+    } else if const { tile_rows::<T>() == lanes::<T>() } {
+        tiled_by::<T, R, C, X, Y, L, 4, true>(out, init, x, y, lower);
+    } else {
+        tiled_by::<T, R, C, X, Y, L, 4, false>(out, init, x, y, lower);
+    }
+}
+
+/// [`tiled`] with tiles of `MR` rows, the rows left over by an overlapping
+/// tile (`OVERLAP`) or by an edge tile of their own size.
+#[inline(always)]
+fn tiled_by<
+    T,
+    const R: usize,
+    const C: usize,
+    X,
+    Y,
+    const L: usize,
+    const MR: usize,
+    const OVERLAP: bool,
+>(
+    out: &mut SMatrix<T, R, C>,
+    init: Option<&SMatrix<T, R, C>>,
+    x: [&X; L],
+    y: [&Y; L],
+    lower: bool,
+) where
+    T: Real,
+    X: Columns<T, R> + ?Sized,
+    Y: Columns<T, C> + ?Sized,
+{
     let full = C / NR * NR;
     for jb in (0..full).step_by(NR) {
-        column_block::<T, R, C, X, Y, L, NR>(out, init, &x, &y, lower, jb);
+        column_block::<T, R, C, X, Y, L, MR, OVERLAP, NR>(out, init, &x, &y, lower, jb);
     }
     match const { C % NR } {
-        1 => column_block::<T, R, C, X, Y, L, 1>(out, init, &x, &y, lower, full),
-        2 => column_block::<T, R, C, X, Y, L, 2>(out, init, &x, &y, lower, full),
-        3 => column_block::<T, R, C, X, Y, L, 3>(out, init, &x, &y, lower, full),
+        1 => column_block::<T, R, C, X, Y, L, MR, OVERLAP, 1>(out, init, &x, &y, lower, full),
+        2 => column_block::<T, R, C, X, Y, L, MR, OVERLAP, 2>(out, init, &x, &y, lower, full),
+        3 => column_block::<T, R, C, X, Y, L, MR, OVERLAP, 3>(out, init, &x, &y, lower, full),
         _ => {}
     }
 }
 
-/// The tiles of columns `jb .. jb + TC`.
+/// The tiles of columns `jb .. jb + TC`, `MR` rows each.
 #[inline(always)]
-fn column_block<T, const R: usize, const C: usize, X, Y, const L: usize, const TC: usize>(
+fn column_block<
+    T,
+    const R: usize,
+    const C: usize,
+    X,
+    Y,
+    const L: usize,
+    const MR: usize,
+    const OVERLAP: bool,
+    const TC: usize,
+>(
     out: &mut SMatrix<T, R, C>,
     init: Option<&SMatrix<T, R, C>>,
     x: &[&X; L],
@@ -220,20 +291,18 @@ fn column_block<T, const R: usize, const C: usize, X, Y, const L: usize, const T
         }
         tile::<T, R, C, X, Y, L, MR, TC>(out, init, x, y, ib, jb);
     }
-    // The rows left over. With four lanes to a register (`f32`): one more
-    // full-height tile ending at the last row, overlapping the tile before
-    // it. The rows in common are computed twice with the same operations in
-    // the same order, so they are written twice with the same value; a
-    // 15-row column then takes four vector operations rather than three and
-    // three scalar ones (measured: the `f32` KF step at 15 states 6 % faster).
-    // With two lanes (`f64`) an edge tile of its own size is as cheap.
-    if const { core::mem::size_of::<T>() <= 4 && !R.is_multiple_of(MR) && R >= MR } {
+    // The rows left over (see `tiled`).
+    if const { OVERLAP && !R.is_multiple_of(MR) && R >= MR } {
         tile::<T, R, C, X, Y, L, MR, TC>(out, init, x, y, R - MR, jb);
     } else {
         match const { R % MR } {
             1 => tile::<T, R, C, X, Y, L, 1, TC>(out, init, x, y, full, jb),
             2 => tile::<T, R, C, X, Y, L, 2, TC>(out, init, x, y, full, jb),
             3 => tile::<T, R, C, X, Y, L, 3, TC>(out, init, x, y, full, jb),
+            4 => tile::<T, R, C, X, Y, L, 4, TC>(out, init, x, y, full, jb),
+            5 => tile::<T, R, C, X, Y, L, 5, TC>(out, init, x, y, full, jb),
+            6 => tile::<T, R, C, X, Y, L, 6, TC>(out, init, x, y, full, jb),
+            7 => tile::<T, R, C, X, Y, L, 7, TC>(out, init, x, y, full, jb),
             _ => {}
         }
     }
@@ -413,5 +482,71 @@ mod tests {
         overlapping_edge_tile::<15>();
         overlapping_edge_tile::<16>();
         overlapping_edge_tile::<19>();
+    }
+
+    /// One tiling of the kernel, chosen here rather than by the target.
+    type Tiling<const R: usize> = fn(
+        &mut SMatrix<f32, R, R>,
+        Option<&SMatrix<f32, R, R>>,
+        [&SMatrix<f32, R, 5>; 2],
+        [&SMatrix<f32, R, 5>; 2],
+        bool,
+    );
+
+    fn every_tiling<const R: usize>() {
+        let (x1, y1) = (sample::<R, 5>(0.3).cast(), sample::<R, 5>(0.6).cast());
+        let (x2, y2) = (sample::<R, 5>(0.8).cast(), sample::<R, 5>(1.4).cast());
+        let init: SMatrix<f32, R, R> = sample::<R, R>(2.1).cast();
+        let expected = in_order(&init, [(&x1, &y1), (&x2, &y2)]);
+        let tilings: [(&str, Tiling<R>); 4] = [
+            (
+                "4 rows, edge tiles",
+                tiled_by::<f32, R, R, _, _, 2, 4, false>,
+            ),
+            (
+                "4 rows, overlapping",
+                tiled_by::<f32, R, R, _, _, 2, 4, true>,
+            ),
+            (
+                "8 rows, edge tiles",
+                tiled_by::<f32, R, R, _, _, 2, 8, false>,
+            ),
+            (
+                "8 rows, overlapping",
+                tiled_by::<f32, R, R, _, _, 2, 8, true>,
+            ),
+        ];
+        for (name, tiling) in tilings {
+            let mut full = SMatrix::<f32, R, R>::zeros();
+            tiling(&mut full, Some(&init), [&x1, &x2], [&y1, &y2], false);
+            assert_eq!(full, expected, "{R} rows, {name}");
+            let mut lower = SMatrix::<f32, R, R>::zeros();
+            tiling(&mut lower, Some(&init), [&x1, &x2], [&y1, &y2], true);
+            for j in 0..R {
+                for i in j..R {
+                    assert_eq!(
+                        lower[(i, j)],
+                        expected[(i, j)],
+                        "{R} rows, {name}, ({i}, {j})"
+                    );
+                }
+            }
+        }
+    }
+
+    /// Every tiling the target can select (4 rows on SSE2, 8 for `f32`
+    /// with AVX; the rows left over by edge tiles or an overlapping tile)
+    /// gives the in-order sums exactly, whichever target runs the tests:
+    /// 0 to 7 rows left over after 8-row tiles, 0 to 3 after 4-row ones.
+    #[test]
+    fn every_tiling_gives_the_in_order_sums() {
+        every_tiling::<13>();
+        every_tiling::<14>();
+        every_tiling::<15>();
+        every_tiling::<16>();
+        every_tiling::<17>();
+        every_tiling::<18>();
+        every_tiling::<22>();
+        every_tiling::<23>();
     }
 }
