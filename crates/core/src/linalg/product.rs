@@ -160,10 +160,24 @@ pub(crate) fn add_products<T, const R: usize, const C: usize, X, Y, const L: usi
     // same constants instantiates every kernel of every branch (4,400 tile
     // functions against 192 in the umbrella crate's test suite; figures in
     // docs/verification.md, "CI").
+    //
+    // Tiled, the rows left over are covered, when a tile's column is one
+    // register, by one more full-height tile ending at the last row,
+    // overlapping the tile before it. The rows in common are computed twice
+    // with the same operations in the same order, so they are written twice
+    // with the same value; a 15-row `f32` column then takes four vector
+    // operations rather than three and three scalar ones (measured: the
+    // `f32` KF step at 15 states 6 % faster). With two registers to a
+    // tile's column (`f64` on SSE2) edge tiles of the rows' own size are
+    // as cheap.
     if const { R <= COLUMN_ROWS || C < NR } {
         columns(out, init, x, y);
+    } else if const { tile_rows::<T>() == 8 } {
+        tiled::<T, R, C, X, Y, L, 8, true>(out, init, x, y, lower);
+    } else if const { tile_rows::<T>() == lanes::<T>() } {
+        tiled::<T, R, C, X, Y, L, 4, true>(out, init, x, y, lower);
     } else {
-        tiled(out, init, x, y, lower);
+        tiled::<T, R, C, X, Y, L, 4, false>(out, init, x, y, lower);
     }
 }
 
@@ -192,42 +206,10 @@ fn columns<T, const R: usize, const C: usize, X, Y, const L: usize>(
 
 /// `MR × NR` tiles held in registers over the whole inner dimension; the
 /// columns left over at the edge (`C mod NR`) get tiles of exactly their
-/// size, and so do the rows left over (`R mod MR`) unless a tile's column
-/// is one register (see [`column_block`]).
+/// size, the rows left over (`R mod MR`) an overlapping full tile
+/// (`OVERLAP`) or tiles of exactly their size.
 #[inline(always)]
-fn tiled<T, const R: usize, const C: usize, X, Y, const L: usize>(
-    out: &mut SMatrix<T, R, C>,
-    init: Option<&SMatrix<T, R, C>>,
-    x: [&X; L],
-    y: [&Y; L],
-    lower: bool,
-) where
-    T: Real,
-    X: Columns<T, R> + ?Sized,
-    Y: Columns<T, C> + ?Sized,
-{
-    // The rows left over: when a tile's column is one register, one more
-    // full-height tile ending at the last row, overlapping the tile before
-    // it. The rows in common are computed twice with the same operations in
-    // the same order, so they are written twice with the same value; a
-    // 15-row `f32` column then takes four vector operations rather than
-    // three and three scalar ones (measured: the `f32` KF step at 15 states
-    // 6 % faster). With two registers to a tile's column (`f64` on SSE2) an
-    // edge tile of its own size is as cheap.
-    // (`const` conditions, so only the kernel taken is instantiated.)
-    if const { tile_rows::<T>() == 8 } {
-        tiled_by::<T, R, C, X, Y, L, 8, true>(out, init, x, y, lower);
-    } else if const { tile_rows::<T>() == lanes::<T>() } {
-        tiled_by::<T, R, C, X, Y, L, 4, true>(out, init, x, y, lower);
-    } else {
-        tiled_by::<T, R, C, X, Y, L, 4, false>(out, init, x, y, lower);
-    }
-}
-
-/// [`tiled`] with tiles of `MR` rows, the rows left over by an overlapping
-/// tile (`OVERLAP`) or by an edge tile of their own size.
-#[inline(always)]
-fn tiled_by<
+fn tiled<
     T,
     const R: usize,
     const C: usize,
@@ -291,7 +273,7 @@ fn column_block<
         }
         tile::<T, R, C, X, Y, L, MR, TC>(out, init, x, y, ib, jb);
     }
-    // The rows left over (see `tiled`).
+    // The rows left over (see `add_products`).
     if const { OVERLAP && !R.is_multiple_of(MR) && R >= MR } {
         tile::<T, R, C, X, Y, L, MR, TC>(out, init, x, y, R - MR, jb);
     } else {
@@ -454,37 +436,7 @@ mod tests {
         })
     }
 
-    fn overlapping_edge_tile<const R: usize>() {
-        let (x1, y1) = (sample::<R, 5>(0.2).cast(), sample::<R, 5>(0.5).cast());
-        let (x2, y2) = (sample::<R, 5>(0.9).cast(), sample::<R, 5>(1.1).cast());
-        let init: SMatrix<f32, R, R> = sample::<R, R>(1.9).cast();
-        let expected = in_order(&init, [(&x1, &y1), (&x2, &y2)]);
-        let mut full = SMatrix::<f32, R, R>::zeros();
-        add_products(&mut full, Some(&init), [&x1, &x2], [&y1, &y2], false);
-        assert_eq!(full, expected, "{R} rows");
-        let mut lower = SMatrix::<f32, R, R>::zeros();
-        add_products(&mut lower, Some(&init), [&x1, &x2], [&y1, &y2], true);
-        for j in 0..R {
-            for i in j..R {
-                assert_eq!(lower[(i, j)], expected[(i, j)], "{R} rows, ({i}, {j})");
-            }
-        }
-    }
-
-    /// In `f32` the rows left over after the 4-row tiles are computed by a
-    /// full tile overlapping the one before it: every element, the rows
-    /// computed twice included, equals the in-order sum exactly, for each
-    /// number of rows left over (0 to 3) and in both modes.
-    #[test]
-    fn f32_overlapping_edge_tiles_give_the_in_order_sums() {
-        overlapping_edge_tile::<13>();
-        overlapping_edge_tile::<14>();
-        overlapping_edge_tile::<15>();
-        overlapping_edge_tile::<16>();
-        overlapping_edge_tile::<19>();
-    }
-
-    /// One tiling of the kernel, chosen here rather than by the target.
+    /// The kernel as the target selects it, or one tiling chosen here.
     type Tiling<const R: usize> = fn(
         &mut SMatrix<f32, R, R>,
         Option<&SMatrix<f32, R, R>>,
@@ -498,23 +450,12 @@ mod tests {
         let (x2, y2) = (sample::<R, 5>(0.8).cast(), sample::<R, 5>(1.4).cast());
         let init: SMatrix<f32, R, R> = sample::<R, R>(2.1).cast();
         let expected = in_order(&init, [(&x1, &y1), (&x2, &y2)]);
-        let tilings: [(&str, Tiling<R>); 4] = [
-            (
-                "4 rows, edge tiles",
-                tiled_by::<f32, R, R, _, _, 2, 4, false>,
-            ),
-            (
-                "4 rows, overlapping",
-                tiled_by::<f32, R, R, _, _, 2, 4, true>,
-            ),
-            (
-                "8 rows, edge tiles",
-                tiled_by::<f32, R, R, _, _, 2, 8, false>,
-            ),
-            (
-                "8 rows, overlapping",
-                tiled_by::<f32, R, R, _, _, 2, 8, true>,
-            ),
+        let tilings: [(&str, Tiling<R>); 5] = [
+            ("as the target selects", add_products::<f32, R, R, _, _, 2>),
+            ("4 rows, edge tiles", tiled::<f32, R, R, _, _, 2, 4, false>),
+            ("4 rows, overlapping", tiled::<f32, R, R, _, _, 2, 4, true>),
+            ("8 rows, edge tiles", tiled::<f32, R, R, _, _, 2, 8, false>),
+            ("8 rows, overlapping", tiled::<f32, R, R, _, _, 2, 8, true>),
         ];
         for (name, tiling) in tilings {
             let mut full = SMatrix::<f32, R, R>::zeros();
@@ -534,10 +475,12 @@ mod tests {
         }
     }
 
-    /// Every tiling the target can select (4 rows on SSE2, 8 for `f32`
-    /// with AVX; the rows left over by edge tiles or an overlapping tile)
-    /// gives the in-order sums exactly, whichever target runs the tests:
-    /// 0 to 7 rows left over after 8-row tiles, 0 to 3 after 4-row ones.
+    /// Every tiling a target can select (4 rows on SSE2, 8 for `f32` with
+    /// AVX; the rows left over by edge tiles or by a full tile overlapping
+    /// the one before it) gives the in-order sums exactly, the rows
+    /// computed twice included, in both modes, whichever target runs the
+    /// tests: 0 to 7 rows left over after 8-row tiles, 0 to 3 after 4-row
+    /// ones.
     #[test]
     fn every_tiling_gives_the_in_order_sums() {
         every_tiling::<13>();
@@ -546,6 +489,7 @@ mod tests {
         every_tiling::<16>();
         every_tiling::<17>();
         every_tiling::<18>();
+        every_tiling::<19>();
         every_tiling::<22>();
         every_tiling::<23>();
     }
