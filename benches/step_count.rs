@@ -11,7 +11,8 @@
 //! The difference of the two totals ("Collected") divided by 2000 is the
 //! count per step. Filters: `kf`, `kf_nis` (the same steps, the caller
 //! reading only the report's NIS in place instead of moving the report),
-//! `kf_diag`, `kf_improved` (paper 000's `ImprovedAdaptive`), `ukf`, `srukf`,
+//! `kf_diag` (diagonal `R`: sequential scalar updates), `kf_diag_batch` (the
+//! same `R` through the batch update), `kf_improved` (paper 000's `ImprovedAdaptive`), `ukf`, `srukf`,
 //! `nalgebra`,
 //! `adskalman`, `checked_by_hand` (the 2-state step written out by hand with
 //! the library's checks, N = 2 only), `kf_f32`, `ukf_f32`, `srukf_f32` (f32
@@ -115,6 +116,11 @@ where
         "kf" => run::<_, N, M, _, true>(Ekf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
         "kf_nis" => run::<_, N, M, _, false>(Ekf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
         "kf_diag" => run::<_, N, M, _, true>(Ekf::new(m.x0, m.p0).unwrap(), &m, m.r_diag, steps),
+        "kf_diag_batch" => {
+            let mut f = Ekf::new(m.x0, m.p0).unwrap();
+            f.form_mut().set_sequential(false);
+            run::<_, N, M, _, true>(f, &m, m.r_diag, steps)
+        }
         "kf_improved" => {
             let adapter = kestrel::adaptive::ImprovedAdaptive::paper000().unwrap();
             let f = Ekf::new(m.x0, m.p0).unwrap().with_adapter(adapter);
