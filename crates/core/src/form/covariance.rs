@@ -22,9 +22,10 @@ use crate::{
 /// When the filter has no adapter and `R` is diagonal, the update processes
 /// the measurement one component at a time (sequential scalar updates),
 /// which gives the same result as the batch update to rounding. It is not
-/// always the cheaper path: in the benchmark notes (twenty-first and
-/// twenty-fourth rounds) it is at 4 to 9 states, and the batch update at 2
-/// and from 12 states on; see [`set_sequential`](Self::set_sequential).
+/// always the faster path: in the benchmark notes (twenty-first and
+/// twenty-fourth rounds) it is at 4 to 9 states and the batch update at 2;
+/// from 12 states on neither is consistently faster. See
+/// [`set_sequential`](Self::set_sequential).
 ///
 /// ```
 /// use kestrel_core::form::{CovarianceForm, Form};
@@ -192,15 +193,12 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         let prior = self.cov.prior(T::one());
 
         if diagonal {
-            // In the spare buffer, current only once checked.
-            let spare = self.cov.spare();
-            *spare = prior;
-            let out = sequential::update_in_place(spare, &h, &r, &nu)?;
+            let out = sequential::update(&prior, &h, &r, &nu)?;
             let x_new = space.add(x, &out.correction);
             ensure_finite(&x_new, Quantity::UpdatedState)?;
-            ensure_finite(spare, Quantity::UpdatedCovariance)?;
+            ensure_finite(&out.covariance, Quantity::UpdatedCovariance)?;
             *x = x_new;
-            self.cov.commit_spare();
+            self.cov.commit(out.covariance);
             let report = UpdateReport {
                 innovation: nu,
                 innovation_used: nu,
