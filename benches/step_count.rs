@@ -12,9 +12,9 @@
 //! count per step. Filters: `kf`, `kf_nis` (the same steps, the caller
 //! reading only the report's NIS in place instead of moving the report),
 //! `kf_diag` (diagonal `R`: sequential scalar updates), `kf_diag_batch` (the
-//! same `R` through the batch update), `kf_improved` (paper 000's `ImprovedAdaptive`), `ukf`, `srukf`,
-//! `nalgebra`,
-//! `adskalman`, `checked_by_hand` (the 2-state step written out by hand with
+//! same `R` through the batch update), `kf_improved` (paper 000's
+//! `ImprovedAdaptive`), `ukf`, `srukf`, `nalgebra`, `adskalman`,
+//! `checked_by_hand` (the 2-state step written out by hand with
 //! the library's checks, N = 2 only), `kf_f32`, `ukf_f32`, `srukf_f32` (f32
 //! at N = 15 only), and
 //! `kf_cycle`, `kf_improved_cycle`: the plain and the `ImprovedAdaptive` EKF
