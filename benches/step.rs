@@ -11,7 +11,8 @@
 //!
 //! Groups (each `<group>/<N>`, N ∈ {2, 4, 6, 9, 12, 15, 18, 24, 32}):
 //! `kf_step` (dense `R`, batch Joseph update), `kf_step_diag` (diagonal `R`,
-//! sequential scalar updates), `kf_step_diag_batch` (diagonal `R`, batch),
+//! sequential scalar updates at every size), `kf_step_diag_batch` (diagonal
+//! `R`, batch; the default path below four measurement components),
 //! `ukf_step`, `srukf_step` (Householder time update), `srukf_step_rankone`,
 //! and the baselines `nalgebra_step` and `adskalman_step`; in `f32` at
 //! `N = 15` only: `kf_step_f32`, `ukf_step_f32`, `srukf_step_f32`.
@@ -107,7 +108,8 @@ fn kf<T: Real, const N: usize, const M: usize>(g: &mut Group, name: &str) {
 
 fn kf_diag<T: Real, const N: usize, const M: usize>(g: &mut Group, name: &str) {
     let m = model::<T, N, M>();
-    let f = Ekf::new(m.x0, m.p0).unwrap();
+    let mut f = Ekf::new(m.x0, m.p0).unwrap();
+    f.form_mut().set_sequential(true);
     time_filter(g, name, f, &m, Noise::Diagonal, true);
 }
 

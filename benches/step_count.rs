@@ -12,7 +12,9 @@
 //! count per step. Filters: `kf`, `kf_nis` (the same steps, the caller
 //! reading only the report's NIS in place instead of moving the report),
 //! `kf_diag` (diagonal `R`: sequential scalar updates), `kf_diag_batch` (the
-//! same `R` through the batch update), `kf_improved` (paper 000's
+//! same `R` through the batch update; the two also take `N`x`M` sizes with
+//! other measurement sizes: 2x1, 3x2, 3x3, 4x1, 4x2, 4x3, 6x2, 6x3, 6x4,
+//! 9x2, 9x3, 9x4, 15x3, 15x4, 21x3, 21x6), `kf_improved` (paper 000's
 //! `ImprovedAdaptive`), `ukf`, `srukf`, `nalgebra`, `adskalman`,
 //! `checked_by_hand` (the 2-state step written out by hand with
 //! the library's checks, N = 2 only), `kf_f32`, `ukf_f32`, `srukf_f32` (f32
@@ -107,6 +109,43 @@ fn checked_by_hand_steps(steps: usize) {
     black_box(f.x);
 }
 
+/// `steps` steps with the diagonal `R`, one component at a time (`kf_diag`)
+/// or through the batch update (`kf_diag_batch`).
+fn diag_steps<T: Real, const N: usize, const M: usize>(filter: &str, steps: usize) -> bool {
+    let m = model::<T, N, M>();
+    let mut f = Ekf::new(m.x0, m.p0).unwrap();
+    match filter {
+        "kf_diag" => f.form_mut().set_sequential(true),
+        "kf_diag_batch" => f.form_mut().set_sequential(false),
+        _ => return false,
+    }
+    run::<_, N, M, _, true>(f, &m, m.r_diag, steps);
+    true
+}
+
+/// `steps` steps of `kf_diag` or `kf_diag_batch` at a size `NxM`.
+fn diag_steps_at(filter: &str, size: &str, steps: usize) -> bool {
+    match size {
+        "2x1" => diag_steps::<f64, 2, 1>(filter, steps),
+        "3x2" => diag_steps::<f64, 3, 2>(filter, steps),
+        "3x3" => diag_steps::<f64, 3, 3>(filter, steps),
+        "4x1" => diag_steps::<f64, 4, 1>(filter, steps),
+        "4x2" => diag_steps::<f64, 4, 2>(filter, steps),
+        "4x3" => diag_steps::<f64, 4, 3>(filter, steps),
+        "6x2" => diag_steps::<f64, 6, 2>(filter, steps),
+        "6x3" => diag_steps::<f64, 6, 3>(filter, steps),
+        "6x4" => diag_steps::<f64, 6, 4>(filter, steps),
+        "9x2" => diag_steps::<f64, 9, 2>(filter, steps),
+        "9x3" => diag_steps::<f64, 9, 3>(filter, steps),
+        "9x4" => diag_steps::<f64, 9, 4>(filter, steps),
+        "15x3" => diag_steps::<f64, 15, 3>(filter, steps),
+        "15x4" => diag_steps::<f64, 15, 4>(filter, steps),
+        "21x3" => diag_steps::<f64, 21, 3>(filter, steps),
+        "21x6" => diag_steps::<f64, 21, 6>(filter, steps),
+        _ => false,
+    }
+}
+
 fn steps_of<T: Real, const N: usize, const M: usize>(filter: &str, steps: usize) -> bool
 where
     Const<M>: DimMin<Const<M>, Output = Const<M>>,
@@ -115,12 +154,7 @@ where
     match filter {
         "kf" => run::<_, N, M, _, true>(Ekf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
         "kf_nis" => run::<_, N, M, _, false>(Ekf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
-        "kf_diag" => run::<_, N, M, _, true>(Ekf::new(m.x0, m.p0).unwrap(), &m, m.r_diag, steps),
-        "kf_diag_batch" => {
-            let mut f = Ekf::new(m.x0, m.p0).unwrap();
-            f.form_mut().set_sequential(false);
-            run::<_, N, M, _, true>(f, &m, m.r_diag, steps)
-        }
+        "kf_diag" | "kf_diag_batch" => return diag_steps::<T, N, M>(filter, steps),
         "kf_improved" => {
             let adapter = kestrel::adaptive::ImprovedAdaptive::paper000().unwrap();
             let f = Ekf::new(m.x0, m.p0).unwrap().with_adapter(adapter);
@@ -159,6 +193,16 @@ where
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    let usage = "usage: step_count FILTER N STEPS (see the source's header)";
+    if let [filter, size, steps] = args.as_slice()
+        && let (Some(_), Ok(steps)) = (size.split_once('x'), steps.parse::<usize>())
+    {
+        if !diag_steps_at(filter, size, steps) {
+            eprintln!("unknown filter or size: {filter} {size}");
+            std::process::exit(2);
+        }
+        return;
+    }
     let parsed = match args.as_slice() {
         [filter, n, steps] => n
             .parse::<usize>()
@@ -168,7 +212,7 @@ fn main() {
         _ => None,
     };
     let Some((filter, n, steps)) = parsed else {
-        eprintln!("usage: step_count FILTER N STEPS (see the source's header)");
+        eprintln!("{usage}");
         return;
     };
     let cycle = match filter {

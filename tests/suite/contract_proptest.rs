@@ -104,7 +104,11 @@ macro_rules! on_every_form {
                 errors.push(result.err());
             }};
         }
-        run!(Ekf::new($x0, $p0).unwrap());
+        run!({
+            let mut f = Ekf::new($x0, $p0).unwrap();
+            f.form_mut().set_sequential(true);
+            f
+        });
         run!({
             let mut f = Ekf::new($x0, $p0).unwrap();
             f.form_mut().set_sequential(false);

@@ -122,6 +122,7 @@ macro_rules! each_form {
         {
             let $name = "ekf sequential";
             let mut $f = Ekf::new(x0, p0).unwrap();
+            $f.form_mut().set_sequential(true);
             $body
         }
         {

@@ -131,6 +131,7 @@ fn positive_definite<const N: usize, const M: usize>(draw: Draw) -> Result<(), T
     let mut batch = Ekf::new(case.x0, case.p0).expect("finite");
     batch.form_mut().set_sequential(false);
     let mut seq = Ekf::new(case.x0, case.p0).expect("finite");
+    seq.form_mut().set_sequential(true);
     let mut ukf = draw.ukf(&case);
     let mut sr = draw.sr_ukf(&case);
 

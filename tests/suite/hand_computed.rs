@@ -60,7 +60,9 @@ macro_rules! all_forms {
         let rank_one = SquareRootForm::new(&p0)
             .unwrap()
             .with_time_update(TimeUpdate::RankOne);
-        $check("ekf sequential", Ekf::new(x0, p0).unwrap(), true);
+        let mut sequential = Ekf::new(x0, p0).unwrap();
+        sequential.form_mut().set_sequential(true);
+        $check("ekf sequential", sequential, true);
         $check("ekf batch", batch, false);
         $check("ukf", Ukf::new(x0, p0).unwrap(), false);
         $check("sr-ukf", SrUkf::new(x0, p0).unwrap(), false);

@@ -210,6 +210,7 @@ fn every_form_without_adapter<T: Real>() {
     batch.form_mut().set_sequential(false);
     assert_clean(armed_run(&mut batch), false, "EKF batch");
     let mut seq = Ekf::<T, 4>::new(x0(), p0()).expect("finite");
+    seq.form_mut().set_sequential(true);
     assert_clean(armed_run(&mut seq), true, "EKF sequential");
     let mut ukf = Ukf::<T, 4>::new(x0(), p0()).expect("finite");
     assert_clean(armed_run(&mut ukf), false, "UKF");
@@ -229,6 +230,7 @@ fn every_form_with_adapter_tuple<T: Real>() {
     let mut ekf = Ekf::<T, 4>::new(x0(), p0())
         .expect("finite")
         .with_adapter(tuple::<T>());
+    ekf.form_mut().set_sequential(true);
     assert_clean(armed_run(&mut ekf), false, "EKF + adapters");
     let mut ukf = Ukf::<T, 4>::new(x0(), p0())
         .expect("finite")

@@ -136,7 +136,9 @@ const CORRELATED: Matrix2<f64> = Matrix2::new(2.5, 0.8, 0.8, 2.0);
 #[test]
 fn without_adapter_every_form_and_path() {
     let ekf = || Ekf::<f64, 4>::new(x0(), p0()).expect("finite");
-    let seen = own("EKF sequential", ekf(), DIAGONAL);
+    let mut sequential = ekf();
+    sequential.form_mut().set_sequential(true);
+    let seen = own("EKF sequential", sequential, DIAGONAL);
     assert_eq!(
         (seen.accepted, seen.sequential, seen.failed),
         (STEPS, STEPS, 1)

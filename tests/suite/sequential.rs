@@ -10,6 +10,7 @@
 use crate::common;
 
 use common::{dispatch, SIZES};
+use kestrel::form::SequentialUpdates;
 use kestrel::models::LinearProcess;
 use kestrel::nalgebra::{Matrix3, Matrix3x4, Matrix4, SVector, Vector3, Vector4};
 use kestrel::{Ekf, LinearizedMeasurement, MeasurementModel, UpdateDetail};
@@ -50,6 +51,7 @@ fn assert_same<const N: usize, const M: usize>(
 fn linear<const N: usize, const M: usize>(seed: u64) {
     let case = common::linear_case::<N, M>(seed, 50, true);
     let mut seq = Ekf::new(case.x0, case.p0).expect("finite");
+    seq.form_mut().set_sequential(true);
     let mut batch = seq.clone();
     batch.form_mut().set_sequential(false);
     for (k, z) in case.measurements.iter().enumerate() {
@@ -70,6 +72,59 @@ fn sequential_equals_batch_on_random_linear_models() {
             dispatch!(size, linear(seed));
         }
     }
+}
+
+/// Whether one update of a 6-state filter with `when`, on an `M`-component
+/// measurement with a diagonal (or a dense) `R`, went one component at a
+/// time.
+fn path<const M: usize>(when: SequentialUpdates, diagonal_r: bool) -> bool {
+    let case = common::linear_case::<6, M>(11, 1, diagonal_r);
+    let mut f = Ekf::new(case.x0, case.p0).expect("finite");
+    f.form_mut().set_sequential_updates(when);
+    assert_eq!(f.form().sequential_updates(), when);
+    f.predict(&case.process, 1.0).expect("predict");
+    let report = f.update(&case.measurement, &case.measurements[0]);
+    report.expect("update").sequential
+}
+
+/// The paths of one to six components, in order.
+fn paths(when: SequentialUpdates, diagonal_r: bool) -> [bool; 6] {
+    [
+        path::<1>(when, diagonal_r),
+        path::<2>(when, diagonal_r),
+        path::<3>(when, diagonal_r),
+        path::<4>(when, diagonal_r),
+        path::<5>(when, diagonal_r),
+        path::<6>(when, diagonal_r),
+    ]
+}
+
+#[test]
+fn the_default_takes_a_diagonal_r_one_component_at_a_time_from_four_components() {
+    use SequentialUpdates::{Always, BySize, Never};
+    assert_eq!(SequentialUpdates::default(), BySize);
+    assert_eq!(SequentialUpdates::MIN_COMPONENTS, 4);
+    let f = Ekf::new(Vector4::zeros(), Matrix4::<f64>::identity()).expect("finite");
+    assert_eq!(f.form().sequential_updates(), BySize);
+    assert_eq!(paths(BySize, true), [false, false, false, true, true, true]);
+    assert_eq!(paths(Always, true), [true; 6]);
+    assert_eq!(paths(Never, true), [false; 6]);
+    // A dense `R` takes the batch update (a 1 × 1 one is diagonal).
+    for when in [BySize, Always, Never] {
+        assert_eq!(paths(when, false)[1..], [false; 5], "{when:?}");
+    }
+    // The shorthand, and the getter it replaces.
+    let mut f = f;
+    f.form_mut().set_sequential(true);
+    assert_eq!(f.form().sequential_updates(), Always);
+    #[allow(deprecated)]
+    let enabled = f.form().sequential();
+    assert!(enabled);
+    f.form_mut().set_sequential(false);
+    assert_eq!(f.form().sequential_updates(), Never);
+    #[allow(deprecated)]
+    let enabled = f.form().sequential();
+    assert!(!enabled);
 }
 
 /// Range, bearing and range rate of a target `[px, py, vx, vy]` seen from
@@ -148,6 +203,7 @@ fn sequential_equals_batch_on_a_nonlinear_ekf() {
     let x0 = truth + Vector4::new(40.0, -30.0, 2.0, -1.0);
     let p0 = Matrix4::from_diagonal(&Vector4::new(2500.0, 2500.0, 25.0, 25.0));
     let mut seq = Ekf::new(x0, p0).expect("finite");
+    seq.form_mut().set_sequential(true);
     let mut batch = seq.clone();
     batch.form_mut().set_sequential(false);
     let (mut min_bearing, mut max_bearing) = (0.0f64, 0.0f64);

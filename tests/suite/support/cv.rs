@@ -83,8 +83,9 @@ pub fn assert_same_estimate<F: LinForm, A, B>(
 }
 
 /// Runs `$check(name, filter, args…)` with a fresh adapter-free filter of
-/// each form at `(X0, P0)`: covariance, unscented, and square-root with
-/// both time-update methods.
+/// each form at `(X0, P0)`: covariance (taking every diagonal `R` one
+/// component at a time), unscented, and square-root with both time-update
+/// methods.
 #[allow(unused_macros)]
 macro_rules! each_form {
     ($check:ident $(, $arg:expr)*) => {{
@@ -94,7 +95,9 @@ macro_rules! each_form {
         let rank_one = SquareRootForm::new(&p0())
             .unwrap()
             .with_time_update(TimeUpdate::RankOne);
-        $check("ekf", Ekf::new(X0, p0()).unwrap() $(, $arg)*);
+        let mut ekf = Ekf::new(X0, p0()).unwrap();
+        ekf.form_mut().set_sequential(true);
+        $check("ekf", ekf $(, $arg)*);
         $check("ukf", Ukf::new(X0, p0()).unwrap() $(, $arg)*);
         $check("sr-ukf", SrUkf::new(X0, p0()).unwrap() $(, $arg)*);
         $check("sr-ukf rank-one", SrUkf::with_form(X0, rank_one).unwrap() $(, $arg)*);

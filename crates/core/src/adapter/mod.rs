@@ -79,8 +79,10 @@ pub trait NoiseAdapter<T: Real, const M: usize>: PriorAdapter<T> {
 
     /// `true` only for adapters that never change anything and need no
     /// call (`()` and tuples of such). The covariance form then skips the
-    /// update hooks entirely: sequential scalar updates for a diagonal `R`,
-    /// a batch update without the adapter round otherwise.
+    /// update hooks entirely: sequential scalar updates for a diagonal `R`
+    /// (when its [`SequentialUpdates`](crate::form::SequentialUpdates)
+    /// setting selects them), a batch update without the adapter round
+    /// otherwise.
     const IS_IDENTITY: bool = false;
 
     /// Runs before the gain is computed.

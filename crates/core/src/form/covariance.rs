@@ -3,7 +3,7 @@ use nalgebra::{SMatrix, SVector};
 use super::checked_noise::CheckedNoise;
 use super::outcome::{adapt, factor_of, joseph_gain, nominal_ldl, unadapted_update};
 use super::pending::PendingCovariance;
-use super::{sequential, FadeStates, Form, PredictForm, UpdateForm};
+use super::{sequential, FadeStates, Form, PredictForm, SequentialUpdates, UpdateForm};
 use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::contract::{check_covariance, check_diagonal, check_noise_cached};
 use crate::error::{diagnose, ensure_finite, is_finite};
@@ -19,13 +19,12 @@ use crate::{
 /// [`joseph_factored_noise`](crate::linalg::joseph_factored_noise)). Requires
 /// [`LinearizedProcess`] and [`LinearizedMeasurement`] models.
 ///
-/// When the filter has no adapter and `R` is diagonal, the update processes
-/// the measurement one component at a time (sequential scalar updates),
-/// which gives the same result as the batch update to rounding. It is not
-/// always the faster path: in the benchmark notes (twenty-first and
-/// twenty-fourth rounds) it is at 4 to 9 states and the batch update at 2;
-/// from 12 states on neither is consistently faster. See
-/// [`set_sequential`](Self::set_sequential).
+/// When the filter has no adapter, `R` is diagonal and the measurement has
+/// at least four components, the update processes the measurement one
+/// component at a time (sequential scalar updates), which gives the same
+/// result as the batch update to rounding and was the faster of the two
+/// there; see [`SequentialUpdates`] for the measurements behind that choice
+/// and [`set_sequential_updates`](Self::set_sequential_updates) to change it.
 ///
 /// ```
 /// use kestrel_core::form::{CovarianceForm, Form};
@@ -38,7 +37,7 @@ use crate::{
 #[derive(Debug, Clone, PartialEq)]
 pub struct CovarianceForm<T: Real, const N: usize> {
     cov: PendingCovariance<T, N>,
-    sequential: bool,
+    sequential: SequentialUpdates,
     /// The last dense `R` and its factor.
     noise: CheckedNoise<T, N>,
 }
@@ -48,22 +47,49 @@ impl<T: Real, const N: usize> CovarianceForm<T, N> {
     pub fn new(p0: &SMatrix<T, N, N>) -> Result<Self, FilterError> {
         let mut form = Self {
             cov: PendingCovariance::new(SMatrix::zeros()),
-            sequential: true,
+            sequential: SequentialUpdates::BySize,
             noise: CheckedNoise::new(),
         };
         form.set_covariance(p0)?;
         Ok(form)
     }
 
-    /// Enables (default) or disables sequential scalar updates for diagonal
-    /// `R` when no adapter is present.
-    pub fn set_sequential(&mut self, enabled: bool) {
-        self.sequential = enabled;
+    /// When a diagonal `R` is taken one component at a time (default:
+    /// [`SequentialUpdates::BySize`]).
+    ///
+    /// ```
+    /// use kestrel_core::form::{CovarianceForm, SequentialUpdates};
+    /// use kestrel_core::nalgebra::Matrix2;
+    /// let mut form = CovarianceForm::new(&Matrix2::<f64>::identity()).unwrap();
+    /// assert_eq!(form.sequential_updates(), SequentialUpdates::BySize);
+    /// form.set_sequential_updates(SequentialUpdates::Always);
+    /// assert_eq!(form.sequential_updates(), SequentialUpdates::Always);
+    /// ```
+    pub fn set_sequential_updates(&mut self, when: SequentialUpdates) {
+        self.sequential = when;
     }
 
-    /// Whether sequential scalar updates are enabled.
-    pub fn sequential(&self) -> bool {
+    /// When a diagonal `R` is taken one component at a time.
+    pub fn sequential_updates(&self) -> SequentialUpdates {
         self.sequential
+    }
+
+    /// Whether a diagonal `R` may be taken one component at a time (any
+    /// setting but [`SequentialUpdates::Never`]).
+    #[deprecated(note = "use `sequential_updates`, which also says for which sizes")]
+    pub fn sequential(&self) -> bool {
+        self.sequential != SequentialUpdates::Never
+    }
+
+    /// Shorthand: `true` takes every diagonal `R` one component at a time
+    /// ([`SequentialUpdates::Always`]), `false` never
+    /// ([`SequentialUpdates::Never`]).
+    pub fn set_sequential(&mut self, enabled: bool) {
+        self.sequential = if enabled {
+            SequentialUpdates::Always
+        } else {
+            SequentialUpdates::Never
+        };
     }
 
     /// Selects the states an adapter's fade scales (default: all, the
@@ -167,7 +193,7 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         // Diagonal R (the sequential path) needs no factor: its check is
         // the sign of each variance. Otherwise the factor the Joseph update
         // takes R through is the check.
-        let diagonal = A::IS_IDENTITY && self.sequential && sequential::is_diagonal(&r);
+        let diagonal = A::IS_IDENTITY && self.sequential.applies(M) && sequential::is_diagonal(&r);
         let r_factor = if diagonal {
             check_diagonal(&r, Quantity::MeasurementNoise)?;
             None

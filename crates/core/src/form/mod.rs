@@ -9,11 +9,13 @@ mod fade_states;
 mod outcome;
 mod pending;
 mod sequential;
+mod sequential_updates;
 mod square_root;
 mod unscented;
 
 pub use covariance::CovarianceForm;
 pub use fade_states::FadeStates;
+pub use sequential_updates::SequentialUpdates;
 pub use square_root::{SquareRootForm, TimeUpdate};
 pub use unscented::UnscentedForm;
 

@@ -18,8 +18,9 @@
 //! ([`PrecisionOptions::small_process_noise`]) the `f32` UKF in mixed units
 //! loses positive definiteness after 90–120 s while the SR-UKF completes
 //! (seeds 1–6). In natural units with that noise rounding decides which
-//! form fails in `f32` (the UKF on seeds 1 and 4 of 1–6 in the current
-//! build; builds equal to it to rounding have lost the SR-UKF on seed 1).
+//! form fails in `f32` (the UKF on seeds 2 and 4 of 1–6 in the current
+//! build; builds equal to it to rounding have lost it on seeds 1 and 4, and
+//! the SR-UKF on seed 1).
 
 use core::fmt;
 
