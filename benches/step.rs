@@ -12,7 +12,8 @@
 //! Groups (each `<group>/<N>`, N ∈ {2, 4, 6, 9, 12, 15, 18, 24, 32}):
 //! `kf_step` (dense `R`, batch Joseph update), `kf_step_diag` (diagonal `R`,
 //! sequential scalar updates at every size), `kf_step_diag_batch` (diagonal
-//! `R`, batch; the default path below four measurement components),
+//! `R`, batch; the default path below four measurement components and above
+//! twelve states),
 //! `ukf_step`, `srukf_step` (Householder time update), `srukf_step_rankone`,
 //! and the baselines `nalgebra_step` and `adskalman_step`; in `f32` at
 //! `N = 15` only: `kf_step_f32`, `ukf_step_f32`, `srukf_step_f32`.

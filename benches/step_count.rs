@@ -12,9 +12,10 @@
 //! count per step. Filters: `kf`, `kf_nis` (the same steps, the caller
 //! reading only the report's NIS in place instead of moving the report),
 //! `kf_diag` (diagonal `R`: sequential scalar updates), `kf_diag_batch` (the
-//! same `R` through the batch update; the two also take `N`x`M` sizes with
-//! other measurement sizes: 2x1, 3x2, 3x3, 4x1, 4x2, 4x3, 6x2, 6x3, 6x4,
-//! 9x2, 9x3, 9x4, 15x3, 15x4, 21x3, 21x6), `kf_improved` (paper 000's
+//! same `R` through the batch update; the two, and their `_f32` forms, also
+//! take sizes `N`x`M`: 2x1, 2x2, 3x2, 3x3, 4x1, 4x2, 4x3, 4x4, 6x2, 6x3,
+//! 6x4, 6x6, 9x2, 9x3, 9x4, 9x6, 15x3, 15x4, 15x6, 21x3, 21x6),
+//! `kf_improved` (paper 000's
 //! `ImprovedAdaptive`), `ukf`, `srukf`, `nalgebra`, `adskalman`,
 //! `checked_by_hand` (the 2-state step written out by hand with
 //! the library's checks, N = 2 only), `kf_f32`, `ukf_f32`, `srukf_f32` (f32
@@ -123,25 +124,38 @@ fn diag_steps<T: Real, const N: usize, const M: usize>(filter: &str, steps: usiz
     true
 }
 
-/// `steps` steps of `kf_diag` or `kf_diag_batch` at a size `NxM`.
+/// `steps` steps of `kf_diag` or `kf_diag_batch` (with `_f32`: in `f32`) at
+/// a size `NxM`.
 fn diag_steps_at(filter: &str, size: &str, steps: usize) -> bool {
+    match filter.strip_suffix("_f32") {
+        Some(filter) => diag_steps_of::<f32>(filter, size, steps),
+        None => diag_steps_of::<f64>(filter, size, steps),
+    }
+}
+
+fn diag_steps_of<T: Real>(filter: &str, size: &str, steps: usize) -> bool {
     match size {
-        "2x1" => diag_steps::<f64, 2, 1>(filter, steps),
-        "3x2" => diag_steps::<f64, 3, 2>(filter, steps),
-        "3x3" => diag_steps::<f64, 3, 3>(filter, steps),
-        "4x1" => diag_steps::<f64, 4, 1>(filter, steps),
-        "4x2" => diag_steps::<f64, 4, 2>(filter, steps),
-        "4x3" => diag_steps::<f64, 4, 3>(filter, steps),
-        "6x2" => diag_steps::<f64, 6, 2>(filter, steps),
-        "6x3" => diag_steps::<f64, 6, 3>(filter, steps),
-        "6x4" => diag_steps::<f64, 6, 4>(filter, steps),
-        "9x2" => diag_steps::<f64, 9, 2>(filter, steps),
-        "9x3" => diag_steps::<f64, 9, 3>(filter, steps),
-        "9x4" => diag_steps::<f64, 9, 4>(filter, steps),
-        "15x3" => diag_steps::<f64, 15, 3>(filter, steps),
-        "15x4" => diag_steps::<f64, 15, 4>(filter, steps),
-        "21x3" => diag_steps::<f64, 21, 3>(filter, steps),
-        "21x6" => diag_steps::<f64, 21, 6>(filter, steps),
+        "2x1" => diag_steps::<T, 2, 1>(filter, steps),
+        "2x2" => diag_steps::<T, 2, 2>(filter, steps),
+        "3x2" => diag_steps::<T, 3, 2>(filter, steps),
+        "3x3" => diag_steps::<T, 3, 3>(filter, steps),
+        "4x1" => diag_steps::<T, 4, 1>(filter, steps),
+        "4x2" => diag_steps::<T, 4, 2>(filter, steps),
+        "4x3" => diag_steps::<T, 4, 3>(filter, steps),
+        "4x4" => diag_steps::<T, 4, 4>(filter, steps),
+        "6x2" => diag_steps::<T, 6, 2>(filter, steps),
+        "6x3" => diag_steps::<T, 6, 3>(filter, steps),
+        "6x4" => diag_steps::<T, 6, 4>(filter, steps),
+        "6x6" => diag_steps::<T, 6, 6>(filter, steps),
+        "9x2" => diag_steps::<T, 9, 2>(filter, steps),
+        "9x3" => diag_steps::<T, 9, 3>(filter, steps),
+        "9x4" => diag_steps::<T, 9, 4>(filter, steps),
+        "9x6" => diag_steps::<T, 9, 6>(filter, steps),
+        "15x3" => diag_steps::<T, 15, 3>(filter, steps),
+        "15x4" => diag_steps::<T, 15, 4>(filter, steps),
+        "15x6" => diag_steps::<T, 15, 6>(filter, steps),
+        "21x3" => diag_steps::<T, 21, 3>(filter, steps),
+        "21x6" => diag_steps::<T, 21, 6>(filter, steps),
         _ => false,
     }
 }

@@ -74,11 +74,11 @@ fn sequential_equals_batch_on_random_linear_models() {
     }
 }
 
-/// Whether one update of a 6-state filter with `when`, on an `M`-component
-/// measurement with a diagonal (or a dense) `R`, went one component at a
-/// time.
-fn path<const M: usize>(when: SequentialUpdates, diagonal_r: bool) -> bool {
-    let case = common::linear_case::<6, M>(11, 1, diagonal_r);
+/// Whether one update of an `N`-state filter with `when`, on an
+/// `M`-component measurement with a diagonal (or a dense) `R`, went one
+/// component at a time.
+fn path_at<const N: usize, const M: usize>(when: SequentialUpdates, diagonal_r: bool) -> bool {
+    let case = common::linear_case::<N, M>(11, 1, diagonal_r);
     let mut f = Ekf::new(case.x0, case.p0).expect("finite");
     f.form_mut().set_sequential_updates(when);
     assert_eq!(f.form().sequential_updates(), when);
@@ -87,23 +87,30 @@ fn path<const M: usize>(when: SequentialUpdates, diagonal_r: bool) -> bool {
     report.expect("update").sequential
 }
 
-/// The paths of one to six components, in order.
+/// The paths of one to six components in a 6-state filter, in order.
 fn paths(when: SequentialUpdates, diagonal_r: bool) -> [bool; 6] {
     [
-        path::<1>(when, diagonal_r),
-        path::<2>(when, diagonal_r),
-        path::<3>(when, diagonal_r),
-        path::<4>(when, diagonal_r),
-        path::<5>(when, diagonal_r),
-        path::<6>(when, diagonal_r),
+        path_at::<6, 1>(when, diagonal_r),
+        path_at::<6, 2>(when, diagonal_r),
+        path_at::<6, 3>(when, diagonal_r),
+        path_at::<6, 4>(when, diagonal_r),
+        path_at::<6, 5>(when, diagonal_r),
+        path_at::<6, 6>(when, diagonal_r),
     ]
 }
 
 #[test]
-fn the_default_takes_a_diagonal_r_one_component_at_a_time_from_four_components() {
+fn the_default_takes_a_diagonal_r_one_component_at_a_time_from_four_components_up_to_twelve_states()
+{
     use SequentialUpdates::{Always, BySize, Never};
     assert_eq!(SequentialUpdates::default(), BySize);
     assert_eq!(SequentialUpdates::MIN_COMPONENTS, 4);
+    assert_eq!(SequentialUpdates::MAX_STATES, 12);
+    // The state-size bound, on either side.
+    assert!(path_at::<12, 4>(BySize, true));
+    assert!(!path_at::<13, 4>(BySize, true));
+    assert!(!path_at::<15, 6>(BySize, true));
+    assert!(path_at::<15, 6>(Always, true));
     let f = Ekf::new(Vector4::zeros(), Matrix4::<f64>::identity()).expect("finite");
     assert_eq!(f.form().sequential_updates(), BySize);
     assert_eq!(paths(BySize, true), [false, false, false, true, true, true]);

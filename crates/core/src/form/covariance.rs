@@ -19,12 +19,13 @@ use crate::{
 /// [`joseph_factored_noise`](crate::linalg::joseph_factored_noise)). Requires
 /// [`LinearizedProcess`] and [`LinearizedMeasurement`] models.
 ///
-/// When the filter has no adapter, `R` is diagonal and the measurement has
-/// at least four components, the update processes the measurement one
-/// component at a time (sequential scalar updates), which gives the same
-/// result as the batch update to rounding and was the faster of the two
-/// there; see [`SequentialUpdates`] for the measurements behind that choice
-/// and [`set_sequential_updates`](Self::set_sequential_updates) to change it.
+/// When the filter has no adapter, `R` is diagonal, the measurement has at
+/// least four components and the state at most twelve, the update processes
+/// the measurement one component at a time (sequential scalar updates),
+/// which gives the same result as the batch update to rounding and was the
+/// faster of the two there; see [`SequentialUpdates`] for the measurements
+/// behind that choice and
+/// [`set_sequential_updates`](Self::set_sequential_updates) to change it.
 ///
 /// ```
 /// use kestrel_core::form::{CovarianceForm, Form};
@@ -193,7 +194,8 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         // Diagonal R (the sequential path) needs no factor: its check is
         // the sign of each variance. Otherwise the factor the Joseph update
         // takes R through is the check.
-        let diagonal = A::IS_IDENTITY && self.sequential.applies(M) && sequential::is_diagonal(&r);
+        let diagonal =
+            A::IS_IDENTITY && self.sequential.applies(N, M) && sequential::is_diagonal(&r);
         let r_factor = if diagonal {
             check_diagonal(&r, Quantity::MeasurementNoise)?;
             None
