@@ -207,7 +207,6 @@ where
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let usage = "usage: step_count FILTER N STEPS (see the source's header)";
     if let [filter, size, steps] = args.as_slice()
         && let (Some(_), Ok(steps)) = (size.split_once('x'), steps.parse::<usize>())
     {
@@ -226,7 +225,7 @@ fn main() {
         _ => None,
     };
     let Some((filter, n, steps)) = parsed else {
-        eprintln!("{usage}");
+        eprintln!("usage: step_count FILTER N STEPS (see the source's header)");
         return;
     };
     let cycle = match filter {
