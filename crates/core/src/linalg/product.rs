@@ -321,8 +321,13 @@ fn tile<T, const R: usize, const C: usize, X, Y, const L: usize, const TR: usize
             ) else {
                 continue;
             };
-            for (a, &yv) in acc.iter_mut().zip(yk) {
-                for (av, &xv) in a.iter_mut().zip(xk) {
+            // Both views copied into locals before the multiply-adds:
+            // measured, 3 % fewer instructions for the KF step at 15 and 32
+            // states and its time 3-7 % lower from 15 states on (benchmark
+            // notes, twenty-seventh round).
+            let (xk, yk): ([T; TR], [T; TC]) = (*xk, *yk);
+            for (a, &yv) in acc.iter_mut().zip(&yk) {
+                for (av, &xv) in a.iter_mut().zip(&xk) {
                     *av += xv * yv;
                 }
             }
