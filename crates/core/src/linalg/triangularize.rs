@@ -74,7 +74,31 @@ pub fn add_columns<T: Real, const N: usize>(s: &mut SMatrix<T, N, N>, cols: &mut
 /// of length `2N` over contiguous memory, which vectorise, instead of
 /// `2N` short column loops per row. Equal to [`add_columns`] to rounding
 /// (the dot products are summed in four lanes); `rows` is scratch.
+///
+/// From [`PAIRS_FROM`] states the reflections are applied two at a time
+/// (see [`in_pairs`]); below, one at a time, whose loop the compiler
+/// unrolls.
 pub(crate) fn add_columns_by_rows<T: Real, const D: usize, const N: usize>(
+    s: &mut SMatrix<T, D, D>,
+    rows: &mut [[[T; N]; 2]; D],
+) {
+    if D < PAIRS_FROM {
+        one_at_a_time(s, rows);
+    } else {
+        in_pairs(s, rows);
+    }
+}
+
+/// The state size from which [`add_columns_by_rows`] applies its
+/// reflections in pairs, as measured (the twenty-eighth round in
+/// `docs/benchmarks.md`): in pairs the square-root step is faster from 6
+/// states on (6 % at 15 states), and slower at 2 and 4 states, where the
+/// loop of one reflection at a time is unrolled whole and the pairs' loop
+/// is not.
+const PAIRS_FROM: usize = 6;
+
+/// [`add_columns_by_rows`] one reflection at a time.
+fn one_at_a_time<T: Real, const D: usize, const N: usize>(
     s: &mut SMatrix<T, D, D>,
     rows: &mut [[[T; N]; 2]; D],
 ) {
@@ -109,9 +133,145 @@ pub(crate) fn add_columns_by_rows<T: Real, const D: usize, const N: usize>(
                 }
             }
         }
-        ss[k * D + k] = beta;
-        flip_if_negative(&mut ss[k * D + k..k * D + D]);
+        set_diagonal::<T, D>(ss, k, beta);
     }
+}
+
+/// [`add_columns_by_rows`] with the reflections applied two at a time,
+/// `k` and `k + 1`, in the compact WY form of their product (R. Schreiber
+/// and C. Van Loan, "A storage-efficient WY representation for products of
+/// Householder transformations", SIAM J. Sci. Stat. Comput. 10(1), 53–57,
+/// 1989): row `k + 1` takes reflection `k` alone, which gives reflection
+/// `k + 1`; each row `i` below then takes both in one pass of two dot
+/// products, `aᵢ = rᵢ·r_k` and `bᵢ = rᵢ·r_{k+1}`, and one pass of two
+/// axpys. Reflection `k + 1` needs the row as reflection `k` left it, whose
+/// dot product with `r_{k+1}` is `bᵢ − wᵢ (r_k·r_{k+1})`. Each row is read
+/// twice per pair of reflections instead of four times, and the rows below
+/// go two at a time, sharing the loads of `r_k` and `r_{k+1}`.
+fn in_pairs<T: Real, const D: usize, const N: usize>(
+    s: &mut SMatrix<T, D, D>,
+    rows: &mut [[[T; N]; 2]; D],
+) {
+    let ss = s.as_mut_slice();
+    // ‖row k‖², computed while row k is updated by the reflections before
+    // (it is the next pivot's input, so computing it then shortens the
+    // chain from one reflection to the next).
+    let mut sigma2 = rows
+        .first()
+        .map_or(T::zero(), |r| dot(r.as_flattened(), r.as_flattened()));
+    let mut k = 0;
+    while k < D {
+        let (head, tail) = rows.split_at_mut(k + 1);
+        let Some((beta, v0, tau)) = reflector(ss[k * D + k], sigma2) else {
+            flip_if_negative(&mut ss[k * D + k..k * D + D]);
+            sigma2 = tail
+                .first()
+                .map_or(T::zero(), |r| dot(r.as_flattened(), r.as_flattened()));
+            k += 1;
+            continue;
+        };
+        let [next, rest @ ..] = tail else {
+            // Row k is the last.
+            set_diagonal::<T, D>(ss, k, beta);
+            break;
+        };
+        let k1 = k + 1;
+        // Row k + 1 by reflection k alone: the input of reflection k + 1.
+        let w = (ss[k * D + k1] * v0 + dot(next.as_flattened(), head[k].as_flattened())) * tau;
+        ss[k * D + k1] -= w * v0;
+        if rest.is_empty() {
+            // Row k + 1 is the last: reflection k + 1 has nothing below,
+            // and the small sizes are spared the pairs' copies.
+            sigma2 = axpy_norm2(next.as_flattened_mut(), head[k].as_flattened(), w);
+            set_diagonal::<T, D>(ss, k, beta);
+            k += 1;
+            continue;
+        }
+        // Copies, so the compiler knows the rows being updated alias
+        // neither reflection.
+        let rk = head[k];
+        let rk = rk.as_flattened();
+        let next_sigma2 = axpy_norm2(next.as_flattened_mut(), rk, w);
+        let next = *next;
+        let next = next.as_flattened();
+        // Column k below row k + 1, and column k + 1 below its diagonal.
+        let (left, right) = ss.split_at_mut(k1 * D);
+        let column_k = &mut left[k * D + k1 + 1..];
+        let second = reflector(right[k1], next_sigma2);
+        let column_k1 = &mut right[k1 + 1..D];
+        let mut below = rest
+            .iter_mut()
+            .zip(column_k.iter_mut().zip(column_k1.iter_mut()));
+        if let Some((_, v01, tau1)) = second {
+            let c = dot(rk, next);
+            // Both reflections' weights for a row, its two factor entries
+            // updated.
+            let weights = |sk: &mut T, sk1: &mut T, a: T, b: T| {
+                let wk = (*sk * v0 + a) * tau;
+                *sk -= wk * v0;
+                let w1 = (*sk1 * v01 + (b - wk * c)) * tau1;
+                *sk1 -= w1 * v01;
+                (wk, w1)
+            };
+            if let Some((ri, (sk, sk1))) = below.next() {
+                let ri = ri.as_flattened_mut();
+                let (a, b) = dot2(ri, rk, next);
+                let (wk, w1) = weights(sk, sk1, a, b);
+                sigma2 = axpy2(ri, rk, wk, next, w1, true);
+            }
+            // The other rows two at a time, sharing each load of r_k and
+            // r_{k+1}.
+            loop {
+                match (below.next(), below.next()) {
+                    (Some((r0, (s0, t0))), Some((r1, (s1, t1)))) => {
+                        let (r0, r1) = (r0.as_flattened_mut(), r1.as_flattened_mut());
+                        let [a0, b0, a1, b1] = dot2x2(r0, r1, rk, next);
+                        let w0 = weights(s0, t0, a0, b0);
+                        let w1 = weights(s1, t1, a1, b1);
+                        axpy2x2(r0, r1, rk, next, w0, w1);
+                    }
+                    (Some((ri, (sk, sk1))), None) => {
+                        let ri = ri.as_flattened_mut();
+                        let (a, b) = dot2(ri, rk, next);
+                        let (wk, w1) = weights(sk, sk1, a, b);
+                        axpy2(ri, rk, wk, next, w1, false);
+                        break;
+                    }
+                    _ => break,
+                }
+            }
+        } else {
+            // Row k + 1 has nothing left to fold: the rows below take
+            // reflection k alone.
+            for (j, (ri, (sk, _))) in below.enumerate() {
+                let ri = ri.as_flattened_mut();
+                let wk = (*sk * v0 + dot(ri, rk)) * tau;
+                *sk -= wk * v0;
+                if j == 0 {
+                    sigma2 = axpy_norm2(ri, rk, wk);
+                } else {
+                    for (x, &a) in ri.iter_mut().zip(rk) {
+                        *x -= wk * a;
+                    }
+                }
+            }
+        }
+        set_diagonal::<T, D>(ss, k, beta);
+        match second {
+            Some((beta1, _, _)) => set_diagonal::<T, D>(ss, k1, beta1),
+            None => flip_if_negative(&mut ss[k1 * D + k1..k1 * D + D]),
+        }
+        k += 2;
+    }
+}
+
+/// Column `k`'s diagonal (of a `D × D` factor's slice) set to the
+/// reflection's `β`, and the column from the diagonal down negated if that
+/// is negative.
+#[inline(always)]
+fn set_diagonal<T: Real, const D: usize>(ss: &mut [T], k: usize, beta: T) {
+    ss[k * D + k] = beta;
+    flip_if_negative(&mut ss[k * D + k..k * D + D]);
 }
 
 /// The Householder reflection taking `(α, c)` with `‖c‖² = σ²` onto
@@ -160,6 +320,116 @@ fn axpy_norm2<T: Real>(a: &mut [T], b: &[T], w: T) -> T {
         sum += *x * *x;
     }
     sum
+}
+
+/// `x ← x − wa a − wb b`, returning `‖x‖²` of the result (summed in the
+/// lanes of [`dot`]) if `with_norm`, else zero.
+#[inline(always)]
+fn axpy2<T: Real>(x: &mut [T], a: &[T], wa: T, b: &[T], wb: T, with_norm: bool) -> T {
+    let mut lanes = [T::zero(); 4];
+    let (x4, x_rest) = x.as_chunks_mut::<4>();
+    let (a4, a_rest) = a.as_chunks::<4>();
+    let (b4, b_rest) = b.as_chunks::<4>();
+    if with_norm {
+        for ((x, a), b) in x4.iter_mut().zip(a4).zip(b4) {
+            for l in 0..4 {
+                x[l] = (x[l] - wa * a[l]) - wb * b[l];
+                lanes[l] += x[l] * x[l];
+            }
+        }
+    } else {
+        for ((x, a), b) in x4.iter_mut().zip(a4).zip(b4) {
+            for l in 0..4 {
+                x[l] = (x[l] - wa * a[l]) - wb * b[l];
+            }
+        }
+    }
+    let mut sum = if with_norm {
+        sum_lanes(lanes, x4.len())
+    } else {
+        T::zero()
+    };
+    for ((x, a), b) in x_rest.iter_mut().zip(a_rest).zip(b_rest) {
+        *x = (*x - wa * *a) - wb * *b;
+        if with_norm {
+            sum += *x * *x;
+        }
+    }
+    sum
+}
+
+/// `[x·a, x·b, y·a, y·b]`, each in the four lanes of [`dot`], in one pass.
+#[inline(always)]
+fn dot2x2<T: Real>(x: &[T], y: &[T], a: &[T], b: &[T]) -> [T; 4] {
+    let mut lanes = [[T::zero(); 4]; 4];
+    let (x4, x_rest) = x.as_chunks::<4>();
+    let (y4, y_rest) = y.as_chunks::<4>();
+    let (a4, a_rest) = a.as_chunks::<4>();
+    let (b4, b_rest) = b.as_chunks::<4>();
+    for (((x, y), a), b) in x4.iter().zip(y4).zip(a4).zip(b4) {
+        for l in 0..4 {
+            lanes[0][l] += x[l] * a[l];
+            lanes[1][l] += x[l] * b[l];
+            lanes[2][l] += y[l] * a[l];
+            lanes[3][l] += y[l] * b[l];
+        }
+    }
+    let n = x4.len();
+    let mut sums = [
+        sum_lanes(lanes[0], n),
+        sum_lanes(lanes[1], n),
+        sum_lanes(lanes[2], n),
+        sum_lanes(lanes[3], n),
+    ];
+    for (((x, y), a), b) in x_rest.iter().zip(y_rest).zip(a_rest).zip(b_rest) {
+        sums[0] += *x * *a;
+        sums[1] += *x * *b;
+        sums[2] += *y * *a;
+        sums[3] += *y * *b;
+    }
+    sums
+}
+
+/// `x ← x − wx₀ a − wx₁ b` and `y ← y − wy₀ a − wy₁ b` in one pass.
+#[inline(always)]
+fn axpy2x2<T: Real>(x: &mut [T], y: &mut [T], a: &[T], b: &[T], wx: (T, T), wy: (T, T)) {
+    let (x4, x_rest) = x.as_chunks_mut::<4>();
+    let (y4, y_rest) = y.as_chunks_mut::<4>();
+    let (a4, a_rest) = a.as_chunks::<4>();
+    let (b4, b_rest) = b.as_chunks::<4>();
+    for (((x, y), a), b) in x4.iter_mut().zip(y4).zip(a4).zip(b4) {
+        for l in 0..4 {
+            x[l] = (x[l] - wx.0 * a[l]) - wx.1 * b[l];
+            y[l] = (y[l] - wy.0 * a[l]) - wy.1 * b[l];
+        }
+    }
+    for (((x, y), a), b) in x_rest.iter_mut().zip(y_rest).zip(a_rest).zip(b_rest) {
+        *x = (*x - wx.0 * *a) - wx.1 * *b;
+        *y = (*y - wy.0 * *a) - wy.1 * *b;
+    }
+}
+
+/// `(x·a, x·b)`, each in the four lanes of [`dot`], in one pass over `x`.
+#[inline(always)]
+fn dot2<T: Real>(x: &[T], a: &[T], b: &[T]) -> (T, T) {
+    let mut lanes_a = [T::zero(); 4];
+    let mut lanes_b = [T::zero(); 4];
+    let (x4, x_rest) = x.as_chunks::<4>();
+    let (a4, a_rest) = a.as_chunks::<4>();
+    let (b4, b_rest) = b.as_chunks::<4>();
+    for ((x, a), b) in x4.iter().zip(a4).zip(b4) {
+        for l in 0..4 {
+            lanes_a[l] += x[l] * a[l];
+            lanes_b[l] += x[l] * b[l];
+        }
+    }
+    let mut sum_a = sum_lanes(lanes_a, x4.len());
+    let mut sum_b = sum_lanes(lanes_b, x4.len());
+    for ((x, a), b) in x_rest.iter().zip(a_rest).zip(b_rest) {
+        sum_a += *x * *a;
+        sum_b += *x * *b;
+    }
+    (sum_a, sum_b)
 }
 
 /// `Σ aᵢ bᵢ` in four independent lanes (so it vectorises).
@@ -272,5 +542,86 @@ mod tests {
             }
         }
         assert_eq!(s, expected);
+    }
+
+    type Fold<const D: usize, const N: usize> =
+        fn(&mut nalgebra::SMatrix<f64, D, D>, &mut [[[f64; N]; 2]; D]);
+
+    /// `add_columns_by_rows` and both its ways, see [`check_fold_by`].
+    fn check_fold<const D: usize, const N: usize>(empty: &[usize]) {
+        check_fold_by::<D, N>(empty, add_columns_by_rows);
+        check_fold_by::<D, N>(empty, one_at_a_time);
+        check_fold_by::<D, N>(empty, in_pairs);
+    }
+
+    /// `fold` against `add_columns` (one reflection at a time, by columns)
+    /// and against `S Sᵀ + Σ cᵢ cᵢᵀ`, for a `D`-state factor and `2N`
+    /// columns, with the rows in `empty` given nothing to fold (their
+    /// columns' entries zero, and their factor row zero left of the
+    /// diagonal, so no reflection before reaches them).
+    fn check_fold_by<const D: usize, const N: usize>(empty: &[usize], fold: Fold<D, N>) {
+        let mut s0 = nalgebra::SMatrix::<f64, D, D>::from_fn(|i, j| match (i, j) {
+            _ if i < j => 0.0,
+            _ if i == j => 1.0 + 0.3 * i as f64,
+            _ if empty.contains(&i) => 0.0,
+            _ => ((i * 5 + j * 3) as f64 * 0.71).sin(),
+        });
+        if D > 2 {
+            // A negative diagonal entry: the fold leaves a positive one.
+            s0[(2, 2)] = -0.8;
+        }
+        let col = |c: usize| {
+            nalgebra::SVector::<f64, D>::from_fn(|i, _| {
+                if empty.contains(&i) {
+                    0.0
+                } else {
+                    ((i * 13 + c * 7) as f64 * 0.37).cos()
+                }
+            })
+        };
+        // `2N` of them (at most 16 here).
+        let mut cols: [nalgebra::SVector<f64, D>; 16] = core::array::from_fn(col);
+        let mut rows = [[[0.0; N]; 2]; D];
+        for (c, v) in cols[..2 * N].iter().enumerate() {
+            for (i, row) in rows.iter_mut().enumerate() {
+                row[c / N][c % N] = v[i];
+            }
+        }
+        let mut p = s0 * s0.transpose();
+        for c in &cols[..2 * N] {
+            p += c * c.transpose();
+        }
+        let mut by_columns = s0;
+        add_columns(&mut by_columns, &mut cols[..2 * N]);
+        let mut by_rows = s0;
+        fold(&mut by_rows, &mut rows);
+        assert_relative_eq!(by_rows, by_columns, epsilon = 1e-13);
+        assert_relative_eq!(by_rows * by_rows.transpose(), p, epsilon = 1e-12);
+        for i in 0..D {
+            assert!(by_rows[(i, i)] >= 0.0, "diagonal {i} of {by_rows}");
+            for j in i + 1..D {
+                assert_eq!(by_rows[(i, j)], 0.0);
+            }
+        }
+    }
+
+    #[test]
+    fn reflections_in_pairs_cover_every_case() {
+        // Both ways at every size (in use, the sizes below `PAIRS_FROM` go
+        // one at a time): every count of rows below a pair (none, one, an
+        // odd and an even number), row lengths with and without a
+        // remainder of the four lanes, and a row with nothing to fold
+        // first and second in a pair.
+        let cases: [&[usize]; 7] = [&[], &[0], &[1], &[2], &[3], &[1, 2], &[0, 1]];
+        for empty in cases {
+            check_fold::<1, 3>(empty);
+            check_fold::<2, 3>(empty);
+            check_fold::<3, 3>(empty);
+            check_fold::<4, 4>(empty);
+            check_fold::<5, 3>(empty);
+            check_fold::<6, 4>(empty);
+            check_fold::<7, 5>(empty);
+            check_fold::<8, 3>(empty);
+        }
     }
 }
