@@ -106,33 +106,18 @@ fn one_at_a_time<T: Real, const D: usize, const N: usize>(
     // ‖row k‖², computed while row k is updated at step k − 1 (it is the
     // next pivot's input, so computing it then shortens the chain from one
     // reflection to the next).
-    let mut sigma2 = rows
-        .first()
-        .map_or(T::zero(), |r| dot(r.as_flattened(), r.as_flattened()));
+    let mut sigma2 = first_norm2(rows);
     for k in 0..D {
         let (head, tail) = rows.split_at_mut(k + 1);
         let rk = head[k].as_flattened();
         let alpha = ss[k * D + k];
         let Some((beta, v0, tau)) = reflector(alpha, sigma2) else {
             flip_if_negative(&mut ss[k * D + k..k * D + D]);
-            sigma2 = tail
-                .first()
-                .map_or(T::zero(), |r| dot(r.as_flattened(), r.as_flattened()));
+            sigma2 = first_norm2(tail);
             continue;
         };
         let below = &mut ss[k * D + k + 1..k * D + D];
-        for (i, (si, ri)) in below.iter_mut().zip(tail.iter_mut()).enumerate() {
-            let ri = ri.as_flattened_mut();
-            let wi = (*si * v0 + dot(ri, rk)) * tau;
-            *si -= wi * v0;
-            if i == 0 {
-                sigma2 = axpy_norm2(ri, rk, wi);
-            } else {
-                for (c, &f) in ri.iter_mut().zip(rk) {
-                    *c -= wi * f;
-                }
-            }
-        }
+        sigma2 = reflect_rows(tail.iter_mut().zip(below.iter_mut()), rk, v0, tau);
         set_diagonal::<T, D>(ss, k, beta);
     }
 }
@@ -156,17 +141,13 @@ fn in_pairs<T: Real, const D: usize, const N: usize>(
     // ‖row k‖², computed while row k is updated by the reflections before
     // (it is the next pivot's input, so computing it then shortens the
     // chain from one reflection to the next).
-    let mut sigma2 = rows
-        .first()
-        .map_or(T::zero(), |r| dot(r.as_flattened(), r.as_flattened()));
+    let mut sigma2 = first_norm2(rows);
     let mut k = 0;
     while k < D {
         let (head, tail) = rows.split_at_mut(k + 1);
         let Some((beta, v0, tau)) = reflector(ss[k * D + k], sigma2) else {
             flip_if_negative(&mut ss[k * D + k..k * D + D]);
-            sigma2 = tail
-                .first()
-                .map_or(T::zero(), |r| dot(r.as_flattened(), r.as_flattened()));
+            sigma2 = first_norm2(tail);
             k += 1;
             continue;
         };
@@ -243,18 +224,7 @@ fn in_pairs<T: Real, const D: usize, const N: usize>(
         } else {
             // Row k + 1 has nothing left to fold: the rows below take
             // reflection k alone.
-            for (j, (ri, (sk, _))) in below.enumerate() {
-                let ri = ri.as_flattened_mut();
-                let wk = (*sk * v0 + dot(ri, rk)) * tau;
-                *sk -= wk * v0;
-                if j == 0 {
-                    sigma2 = axpy_norm2(ri, rk, wk);
-                } else {
-                    for (x, &a) in ri.iter_mut().zip(rk) {
-                        *x -= wk * a;
-                    }
-                }
-            }
+            sigma2 = reflect_rows(below.map(|(ri, (sk, _))| (ri, sk)), rk, v0, tau);
         }
         set_diagonal::<T, D>(ss, k, beta);
         match second {
@@ -263,6 +233,39 @@ fn in_pairs<T: Real, const D: usize, const N: usize>(
         }
         k += 2;
     }
+}
+
+/// ‖rows[0]‖², zero if there is no row.
+#[inline(always)]
+fn first_norm2<T: Real, const N: usize>(rows: &[[[T; N]; 2]]) -> T {
+    rows.first()
+        .map_or(T::zero(), |r| dot(r.as_flattened(), r.as_flattened()))
+}
+
+/// The reflection `(v₀, τ)` with vector `r` applied to `rows`, each with
+/// its entry of the reflection's column of the factor; returns ‖first
+/// row‖² after it (the next pivot's input), zero if there is no row.
+#[inline(always)]
+fn reflect_rows<'a, T: Real, const N: usize>(
+    rows: impl Iterator<Item = (&'a mut [[T; N]; 2], &'a mut T)>,
+    r: &[T],
+    v0: T,
+    tau: T,
+) -> T {
+    let mut first_norm2 = T::zero();
+    for (i, (ri, si)) in rows.enumerate() {
+        let ri = ri.as_flattened_mut();
+        let wi = (*si * v0 + dot(ri, r)) * tau;
+        *si -= wi * v0;
+        if i == 0 {
+            first_norm2 = axpy_norm2(ri, r, wi);
+        } else {
+            for (c, &f) in ri.iter_mut().zip(r) {
+                *c -= wi * f;
+            }
+        }
+    }
+    first_norm2
 }
 
 /// Column `k`'s diagonal (of a `D × D` factor's slice) set to the
