@@ -17,7 +17,10 @@
 //! (`ImprovedAdaptive::paper000`), `sage_husa_fading`
 //! (`SageHusaFading::paper000`), `huber_inflation`, `chi_square_gate`
 //! (`α = 0.01`), `windowed_noise` (window 10); not `fuzzy_gain`, whose inputs
-//! the caller sets every epoch. Sizes 6, 15 and 18 with `M = 6`.
+//! the caller sets every epoch. Also the two measuring adapters of
+//! `adapter_parts` (`common::parts`): `pass_through` (the adapter way, no
+//! change) and `fixed_noise` (a fixed `R̂ = 1.25 R` put in place every
+//! epoch). Sizes 6, 15 and 18 with `M = 6`.
 //!
 //! `step_count` counts the plain and the `ImprovedAdaptive` EKF on the same
 //! cycle (`kf_cycle`, `kf_improved_cycle`) as it has since the adapter work
@@ -34,6 +37,7 @@
 #[allow(dead_code)]
 mod common;
 
+use common::parts::{FixedNoise, PassThrough};
 use common::simulate::cycle_steps;
 use kestrel::adaptive::{
     ChiSquareGate, DivergenceFading, HuberInflation, ImprovedAdaptive, OutlierCompression,
@@ -46,6 +50,11 @@ fn steps_of<const N: usize>(name: &str, steps: usize) -> bool {
     const M: usize = 6;
     match name {
         "plain" => cycle_steps::<_, N, M>((), steps),
+        "pass_through" => cycle_steps::<_, N, M>(PassThrough, steps),
+        "fixed_noise" => {
+            let r = common::model::Model::<f64, N, M>::of_step_benchmarks().r;
+            cycle_steps::<_, N, M>(FixedNoise::scaled(&r), steps)
+        }
         "sage_husa" => cycle_steps::<_, N, M>(SageHusa::paper().unwrap(), steps),
         "divergence_fading" => {
             cycle_steps::<_, N, M>(DivergenceFading::new(3.0, 100.0).unwrap(), steps)

@@ -39,15 +39,13 @@ use std::hint::black_box;
 use common::model::Model;
 use common::reference::{check, CHECK_STEPS};
 use common::rounds::{
-    chunk_steps, parse_rounds, probe_levels, spread, time_chunk, Probe, CONTENDED,
+    print_medians, probe_levels, rounds_or_exit, spread, take_turns, time_chunk, Probe, CONTENDED,
 };
-use common::simulate::{measurements, CYCLE};
-use kestrel::adapter::NoiseAdapter;
+use common::simulate::{cycled, measurements, CYCLE};
 use kestrel::adaptive::ImprovedAdaptive;
-use kestrel::form::{CovarianceForm, PredictForm, UpdateForm};
+use kestrel::form::{PredictForm, UpdateForm};
 use kestrel::models::{LinearMeasurement, LinearProcess};
-use kestrel::nalgebra::SVector;
-use kestrel::{Ekf, Filter, Real, SrUkf, Ukf, UpdateReport};
+use kestrel::{Ekf, Filter, Real, SrUkf, Ukf};
 
 const N: usize = 15;
 const M: usize = 6;
@@ -139,28 +137,6 @@ where
     f
 }
 
-/// `f` after one pass over the cycle `zs` (panics unless every update is
-/// accepted on the batch path and `acted` holds for some epoch's report).
-fn cycled<A: NoiseAdapter<f64, M>>(
-    name: &str,
-    mut f: Filter<f64, N, CovarianceForm<f64, N>, A>,
-    m: &Model<f64, N, M>,
-    zs: &[SVector<f64, M>],
-    acted: fn(&UpdateReport<f64, M, A::Report>) -> bool,
-) -> Filter<f64, N, CovarianceForm<f64, N>, A> {
-    let process = LinearProcess::new(m.phi, m.q);
-    let measurement = LinearMeasurement::new(m.h, m.r);
-    let mut any = false;
-    for z in zs {
-        f.predict(&process, 1.0).expect("predict");
-        let report = f.update(&measurement, z).expect("update");
-        assert!(!report.sequential, "{name}: batch update");
-        any |= acted(&report);
-    }
-    assert!(any, "{name}: the adapter never acted");
-    f
-}
-
 /// Nanoseconds a step (a probe call for the probe), per workload and round.
 fn measure(rounds: usize) -> [Vec<f64>; WORKLOADS.len()] {
     let m64 = Model::<f64, N, M>::of_step_benchmarks();
@@ -216,37 +192,20 @@ fn measure(rounds: usize) -> [Vec<f64>; WORKLOADS.len()] {
     let mut probe = Probe::new();
     let mut probe_call = || probe.call();
 
-    let chunks = [
-        chunk_steps(&mut kf_step),
-        chunk_steps(&mut ukf_step),
-        chunk_steps(&mut srukf_step),
-        chunk_steps(&mut kf32_step),
-        chunk_steps(&mut ukf32_step),
-        chunk_steps(&mut srukf32_step),
-        chunk_steps(&mut plain_step),
-        chunk_steps(&mut improved_step),
-        chunk_steps(&mut probe_call),
-    ];
-    let mut times: [Vec<f64>; WORKLOADS.len()] = Default::default();
-    for round in 0..rounds {
-        for k in 0..WORKLOADS.len() {
-            let w = (round + k) % WORKLOADS.len();
-            let steps = chunks[w];
-            let t = match w {
-                0 => time_chunk(&mut kf_step, steps),
-                1 => time_chunk(&mut ukf_step, steps),
-                2 => time_chunk(&mut srukf_step, steps),
-                3 => time_chunk(&mut kf32_step, steps),
-                4 => time_chunk(&mut ukf32_step, steps),
-                5 => time_chunk(&mut srukf32_step, steps),
-                6 => time_chunk(&mut plain_step, steps),
-                7 => time_chunk(&mut improved_step, steps),
-                _ => time_chunk(&mut probe_call, steps),
-            };
-            times[w].push(t);
-        }
-    }
-    times
+    take_turns(
+        rounds,
+        [
+            &mut |n| time_chunk(&mut kf_step, n),
+            &mut |n| time_chunk(&mut ukf_step, n),
+            &mut |n| time_chunk(&mut srukf_step, n),
+            &mut |n| time_chunk(&mut kf32_step, n),
+            &mut |n| time_chunk(&mut ukf32_step, n),
+            &mut |n| time_chunk(&mut srukf32_step, n),
+            &mut |n| time_chunk(&mut plain_step, n),
+            &mut |n| time_chunk(&mut improved_step, n),
+            &mut |n| time_chunk(&mut probe_call, n),
+        ],
+    )
 }
 
 /// `median (p10–p90), met of rounds` of the ratios `keep` selects, against
@@ -264,20 +223,7 @@ fn summary(ratios: &[f64], most: f64, keep: impl Fn(usize) -> bool) -> String {
 }
 
 fn main() {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let rounds = match parse_rounds(&args) {
-        Ok((rounds, rest)) if rest.is_empty() => rounds.unwrap_or(DEFAULT_ROUNDS),
-        Ok((_, rest)) => {
-            eprintln!("paired_ratios: unexpected argument '{}'", rest[0]);
-            eprintln!("usage: paired_ratios [--rounds R]");
-            std::process::exit(2);
-        }
-        Err(message) => {
-            eprintln!("paired_ratios: {message}");
-            eprintln!("usage: paired_ratios [--rounds R]");
-            std::process::exit(2);
-        }
-    };
+    let rounds = rounds_or_exit("paired_ratios", DEFAULT_ROUNDS);
     let times = measure(rounds);
     let probe = &times[PROBE];
     let fastest = probe.iter().copied().fold(f64::INFINITY, f64::min);
@@ -285,10 +231,7 @@ fn main() {
 
     println!("{N} states, M = {M}: ns a step (the probe: a call), median over rounds (10th–90th percentile); {rounds} rounds");
     println!();
-    println!("| {} |", WORKLOADS.join(" | "));
-    println!("|{}", "---|".repeat(WORKLOADS.len()));
-    let cells: Vec<String> = times.iter().map(|t| spread(t, 0)).collect();
-    println!("| {} |", cells.join(" | "));
+    print_medians(&WORKLOADS, &times);
     println!();
     println!("Each ratio within a round: median over rounds (10th–90th percentile), rounds meeting the goal of rounds");
     println!(

@@ -8,6 +8,9 @@ pub mod adskalman_kf;
 pub mod checked_by_hand;
 pub mod hand;
 pub mod model;
+// Only the benchmarks that take the adapter path apart use them.
+#[allow(dead_code)]
+pub mod parts;
 // Only the benchmarks that compare estimates check against the reference.
 #[allow(dead_code)]
 pub mod reference;

@@ -96,6 +96,15 @@ pub fn probe_levels(probe: &[f64], fastest: f64) -> String {
     }
 }
 
+/// A Markdown table of one row: each workload's median over rounds with its
+/// 10th and 90th percentiles, in whole nanoseconds.
+pub fn print_medians(names: &[&str], times: &[Vec<f64>]) {
+    println!("| {} |", names.join(" | "));
+    println!("|{}", "---|".repeat(names.len()));
+    let cells: Vec<String> = times.iter().map(|t| spread(t, 0)).collect();
+    println!("| {} |", cells.join(" | "));
+}
+
 /// Nanoseconds a step of `steps` calls of `step`. Generic, so each workload
 /// is timed by its own instance with its step inlined into the loop, as in
 /// a criterion benchmark.
@@ -109,11 +118,60 @@ pub fn time_chunk(step: &mut impl FnMut(), steps: usize) -> f64 {
 
 /// Steps of `step` that take about [`CHUNK_NANOS`] (doubling from one).
 pub fn chunk_steps(step: &mut impl FnMut()) -> usize {
+    steps_for_chunk(&mut |steps| time_chunk(step, steps))
+}
+
+/// Steps that take about [`CHUNK_NANOS`] by `timed` (nanoseconds a step of
+/// a chunk of the given length), doubling from one.
+fn steps_for_chunk(timed: &mut dyn FnMut(usize) -> f64) -> usize {
     let mut steps = 1;
-    while time_chunk(step, steps) * (steps as f64) < CHUNK_NANOS && steps < 1 << 24 {
+    while timed(steps) * (steps as f64) < CHUNK_NANOS && steps < 1 << 24 {
         steps *= 2;
     }
     steps
+}
+
+/// A workload for [`take_turns`]: times a chunk of the given number of
+/// steps and returns nanoseconds a step, as `|n| time_chunk(&mut step, n)`
+/// does. One dynamic call a chunk; the steps inside are the closure's own.
+pub type Timed<'a> = &'a mut dyn FnMut(usize) -> f64;
+
+/// `rounds` rounds of the workloads in turns: each round times one chunk
+/// of about [`CHUNK_NANOS`] of every workload, starting one workload later
+/// than the round before, so that no workload always follows the same
+/// one. Per workload, in the order given, its nanoseconds a step in each
+/// round.
+pub fn take_turns<const W: usize>(rounds: usize, mut workloads: [Timed<'_>; W]) -> [Vec<f64>; W] {
+    let chunks: [usize; W] = core::array::from_fn(|w| steps_for_chunk(&mut *workloads[w]));
+    let mut times: [Vec<f64>; W] = core::array::from_fn(|_| Vec::with_capacity(rounds));
+    for round in 0..rounds {
+        for k in 0..W {
+            let w = (round + k) % W;
+            times[w].push((workloads[w])(chunks[w]));
+        }
+    }
+    times
+}
+
+/// The rounds `--rounds` asks for, `default` without it; for any other
+/// argument, or a bad value, a message naming it and `usage` on standard
+/// error, and exit code 2. `name` is the benchmark's.
+pub fn rounds_or_exit(name: &str, default: usize) -> usize {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let usage = format!("usage: {name} [--rounds R]");
+    match parse_rounds(&args) {
+        Ok((rounds, rest)) if rest.is_empty() => rounds.unwrap_or(default),
+        Ok((_, rest)) => {
+            eprintln!("{name}: unexpected argument '{}'", rest[0]);
+            eprintln!("{usage}");
+            std::process::exit(2);
+        }
+        Err(message) => {
+            eprintln!("{name}: {message}");
+            eprintln!("{usage}");
+            std::process::exit(2);
+        }
+    }
 }
 
 /// The value of `--rounds` (`None`: the flag is absent; `cargo bench` adds

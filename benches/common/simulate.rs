@@ -54,3 +54,29 @@ where
         black_box(f.update(&measurement, black_box(z)).expect("update"));
     }
 }
+
+/// `f` after one pass over the cycle `zs` (panics unless every update is
+/// accepted on the batch path and `acted` holds for some epoch's report).
+pub fn cycled<A, const N: usize, const M: usize>(
+    name: &str,
+    mut f: kestrel::Filter<f64, N, kestrel::form::CovarianceForm<f64, N>, A>,
+    m: &Model<f64, N, M>,
+    zs: &[SVector<f64, M>],
+    acted: fn(&kestrel::UpdateReport<f64, M, A::Report>) -> bool,
+) -> kestrel::Filter<f64, N, kestrel::form::CovarianceForm<f64, N>, A>
+where
+    A: kestrel::adapter::NoiseAdapter<f64, M>,
+{
+    use kestrel::models::{LinearMeasurement, LinearProcess};
+    let process = LinearProcess::new(m.phi, m.q);
+    let measurement = LinearMeasurement::new(m.h, m.r);
+    let mut any = false;
+    for z in zs {
+        f.predict(&process, 1.0).expect("predict");
+        let report = f.update(&measurement, z).expect("update");
+        assert!(!report.sequential, "{name}: batch update");
+        any |= acted(&report);
+    }
+    assert!(any, "{name}: the adapter never acted");
+    f
+}

@@ -486,7 +486,13 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
 
     fn refresh(&mut self) {
         self.whitened.set(None);
-        self.covariance = self.predicted_covariance() + self.noise;
+        // Unfaded, `predicted_covariance` is the nominal one: added in
+        // place rather than through its copy.
+        self.covariance = if self.fade == T::one() {
+            self.nominal_predicted + self.noise
+        } else {
+            self.predicted_covariance() + self.noise
+        };
         // Factored when first asked for: a fade then a new `R` factor once.
         self.factor = OnceCell::new();
         self.nominal_ldl = None;
