@@ -102,7 +102,7 @@ fn measure(rounds: usize) -> [Vec<f64>; WORKLOADS.len()] {
         r.adapters.estimated
     });
     let mut tests = cycled("tests", ekf().with_adapter(tests()), &m, &zs, |r| {
-        r.adapters.0.compressed && r.adapters.1.diverged
+        r.adapters.0.compressed || r.adapters.1.diverged
     });
     let improved = ImprovedAdaptive::paper000().unwrap();
     let mut improved = cycled("improved", ekf().with_adapter(improved), &m, &zs, |r| {
