@@ -21,6 +21,7 @@ mod hand_computed;
 mod hostile_f32;
 mod jacobians;
 mod no_alloc;
+mod quiet_epochs;
 mod report_detail;
 mod sequential;
 mod smoother;

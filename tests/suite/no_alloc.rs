@@ -77,6 +77,27 @@ impl<T: Real, const M: usize> NoiseAdapter<T, M> for Tuner<T> {
     }
 }
 
+/// A test adapter that changes nothing and reads the posterior view: its
+/// epochs take the covariance form's way for epochs left as they were, with
+/// the view's factor and `L⁻¹ ν` formed on demand.
+#[derive(Debug, Clone, Copy, Default)]
+struct Onlooker {
+    updates: u32,
+}
+
+impl<T: Real> PriorAdapter<T> for Onlooker {}
+
+impl<T: Real, const M: usize> NoiseAdapter<T, M> for Onlooker {
+    type Report = ();
+    fn before_gain(&mut self, _step: &mut GainStep<T, M>, _report: &mut ()) {}
+    fn after_update(&mut self, posterior: &Posterior<'_, T, M>, _report: &mut ()) {
+        let whitened = *posterior.whitened_innovation();
+        black_box((whitened, posterior.post_fit_residual()));
+        black_box(posterior.posterior_covariance());
+        self.updates += 1;
+    }
+}
+
 /// An adapter that allocates in every hook: the positive control for the
 /// filter runs.
 struct Leaky;
@@ -241,6 +262,30 @@ fn every_form_with_adapter_tuple<T: Real>() {
     assert_eq!(sr.adapter().0.updates, 30, "the adapter ran");
     let mut sr = sr_ukf::<T>(TimeUpdate::RankOne).with_adapter(tuple::<T>());
     assert_clean(armed_run(&mut sr), false, "SR-UKF rank-one + adapters");
+}
+
+fn every_form_with_an_adapter_that_changes_nothing<T: Real>() {
+    let mut batch = Ekf::<T, 4>::new(x0(), p0())
+        .expect("finite")
+        .with_adapter(Onlooker::default());
+    assert_clean(armed_run(&mut batch), false, "EKF + onlooker");
+    assert_eq!(
+        batch.adapter().updates,
+        30,
+        "the adapter read every posterior"
+    );
+    let mut ukf = Ukf::<T, 4>::new(x0(), p0())
+        .expect("finite")
+        .with_adapter(Onlooker::default());
+    assert_clean(armed_run(&mut ukf), false, "UKF + onlooker");
+    let mut sr = sr_ukf::<T>(TimeUpdate::Householder).with_adapter(Onlooker::default());
+    assert_clean(armed_run(&mut sr), false, "SR-UKF + onlooker");
+}
+
+#[test]
+fn no_heap_use_with_an_adapter_that_changes_nothing() {
+    every_form_with_an_adapter_that_changes_nothing::<f64>();
+    every_form_with_an_adapter_that_changes_nothing::<f32>();
 }
 
 #[test]

@@ -289,3 +289,15 @@ pub fn constant_velocity<T: Real>(
         LinearMeasurement::new(h.cast(), r.cast()),
     )
 }
+
+/// An EKF on `x0` and `p0` with sequential updates off, so that a dense or
+/// diagonal `R` takes the batch update.
+#[allow(dead_code)]
+pub fn batch_ekf<const N: usize>(
+    x0: SVector<f64, N>,
+    p0: SMatrix<f64, N, N>,
+) -> kestrel::Filter<f64, N, kestrel::form::CovarianceForm<f64, N>> {
+    let mut f = kestrel::Ekf::new(x0, p0).expect("finite");
+    f.form_mut().set_sequential(false);
+    f
+}

@@ -234,6 +234,21 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
         }
     }
 
+    /// Whether the adapters left the view as the form built it on its
+    /// `L D Lᵀ`: `C` the nominal one (no fade, no new `R`), the innovation
+    /// the raw one, the measurement not rejected. Then the update needs
+    /// nothing the adapters could have changed.
+    #[inline(always)]
+    pub(crate) fn is_unchanged(&self) -> bool {
+        self.nominal_ldl.is_some() && !self.rejected && self.innovation == self.raw_innovation
+    }
+
+    /// The factor of `C` if an adapter's test has formed it already.
+    #[inline(always)]
+    pub(crate) fn formed_factor(&self) -> Option<&SMatrix<T, M, M>> {
+        self.factor.get().and_then(Option::as_ref)
+    }
+
     /// `H P⁻ Hᵀ + R` as the form gave them, before any adapter.
     #[inline(always)]
     pub(crate) fn nominal_innovation_covariance(&self) -> SMatrix<T, M, M> {

@@ -66,7 +66,11 @@ pub trait PriorAdapter<T: Real> {
 /// `R`, scale the innovation, fade the propagated covariance, or reject the
 /// measurement; the form recomputes what changed, applies the gain, and
 /// [`after_update`](Self::after_update) may learn from the result (for example
-/// estimate `R` from the post-fit residual).
+/// estimate `R` from the post-fit residual). In the covariance form, an
+/// epoch in which the adapters changed nothing is updated as without
+/// adapters (the same state, covariance and report, bit for bit), and the
+/// [`Posterior`] view forms the factor of `C` and the whitened innovation
+/// only when `after_update` first reads them.
 #[diagnostic::on_unimplemented(
     message = "the noise adapter `{Self}` does not work on {M}-dimensional measurements",
     label = "the filter's adapter fixes the measurement size of `update`",

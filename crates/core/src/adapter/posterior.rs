@@ -1,6 +1,10 @@
+use core::cell::OnceCell;
+
 use nalgebra::{SMatrix, SVector};
 
-use crate::linalg::{add_products, mirror_lower, mul_vector, solve_lower, solve_lower_transpose};
+use crate::linalg::{
+    add_products, mirror_lower, mul_vector, solve_lower, solve_lower_transpose, Ldl,
+};
 use crate::Real;
 
 /// The measurement-space view of a completed update, given to
@@ -11,7 +15,9 @@ use crate::Real;
 /// dimension: the post-fit residual `(I − H K) ν = R C⁻¹ ν` and the
 /// posterior measurement covariance `H P⁺ Hᵀ = H_p − H_p C⁻¹ H_p`.
 /// (Exact for linear models; the unscented forms use their statistical
-/// linearisation.)
+/// linearisation.) What needs the lower Cholesky factor `L` of `C` or
+/// `L⁻¹ ν` computes them when first asked, once, if the update did not
+/// already have them.
 ///
 /// ```
 /// use kestrel_core::adapter::Posterior;
@@ -22,14 +28,28 @@ use crate::Real;
 /// assert_eq!(post.post_fit_residual()[0], 0.5);          // R C⁻¹ ν
 /// assert_eq!(post.posterior_covariance()[0], 0.75);      // 3 − 9/4
 /// ```
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct Posterior<'a, T: Real, const M: usize> {
     innovation: &'a SVector<T, M>,
-    /// `L⁻¹ ν`.
-    whitened: SVector<T, M>,
     predicted: &'a SMatrix<T, M, M>,
     noise: &'a SMatrix<T, M, M>,
-    factor: &'a SMatrix<T, M, M>,
+    whitening: Whitening<'a, T, M>,
+}
+
+/// The lower Cholesky factor `L` of `C` and `L⁻¹ ν`: given, or formed from
+/// the form's `L D Lᵀ` of `C` when an adapter first reads them. Most
+/// adapters never do, and in the epochs they leave as they were the update
+/// then forms neither.
+#[derive(Debug, Clone)]
+enum Whitening<'a, T: Real, const M: usize> {
+    Given {
+        factor: &'a SMatrix<T, M, M>,
+        whitened: OnceCell<SVector<T, M>>,
+    },
+    Deferred {
+        ldl: &'a Ldl<T, M>,
+        formed: OnceCell<(SMatrix<T, M, M>, SVector<T, M>)>,
+    },
 }
 
 impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
@@ -58,11 +78,69 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
     ) -> Self {
         Self {
             innovation,
-            whitened: *whitened,
             predicted,
             noise,
-            factor,
+            whitening: Whitening::Given {
+                factor,
+                whitened: OnceCell::from(*whitened),
+            },
         }
+    }
+
+    /// The view on `C`'s lower Cholesky factor `factor`, or, without it, on
+    /// the form's `L D Lᵀ` of `C`; `L √D` and `L⁻¹ ν` are formed only when
+    /// an adapter first reads them, by the same arithmetic as the adapter
+    /// way (so the same bits).
+    #[inline(always)]
+    pub(crate) fn deferred(
+        innovation: &'a SVector<T, M>,
+        predicted: &'a SMatrix<T, M, M>,
+        noise: &'a SMatrix<T, M, M>,
+        (factor, ldl): (Option<&'a SMatrix<T, M, M>>, &'a Ldl<T, M>),
+    ) -> Self {
+        let whitening = match factor {
+            Some(factor) => Whitening::Given {
+                factor,
+                whitened: OnceCell::new(),
+            },
+            None => Whitening::Deferred {
+                ldl,
+                formed: OnceCell::new(),
+            },
+        };
+        Self {
+            innovation,
+            predicted,
+            noise,
+            whitening,
+        }
+    }
+
+    /// `L` and `L⁻¹ ν`.
+    fn whitening(&self) -> (&SMatrix<T, M, M>, &SVector<T, M>) {
+        let whiten = |factor: &SMatrix<T, M, M>| {
+            let mut whitened = *self.innovation;
+            solve_lower(factor, &mut whitened);
+            whitened
+        };
+        match &self.whitening {
+            Whitening::Given { factor, whitened } => {
+                (factor, whitened.get_or_init(|| whiten(factor)))
+            }
+            Whitening::Deferred { ldl, formed } => {
+                let (factor, whitened) = formed.get_or_init(|| {
+                    let factor = ldl.cholesky_factor();
+                    let whitened = whiten(&factor);
+                    (factor, whitened)
+                });
+                (factor, whitened)
+            }
+        }
+    }
+
+    /// `L`, the lower Cholesky factor of `C`.
+    fn factor(&self) -> &SMatrix<T, M, M> {
+        self.whitening().0
     }
 
     /// The innovation the update used (after any adapter scaling).
@@ -88,8 +166,8 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
     /// `C⁻¹ v`.
     pub fn solve(&self, v: &SVector<T, M>) -> SVector<T, M> {
         let mut w = *v;
-        solve_lower(self.factor, &mut w);
-        solve_lower_transpose(self.factor, &mut w);
+        solve_lower(self.factor(), &mut w);
+        solve_lower_transpose(self.factor(), &mut w);
         w
     }
 
@@ -105,13 +183,13 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
     /// assert_eq!(post.whitened_innovation()[0], 1.0);
     /// ```
     pub fn whitened_innovation(&self) -> &SVector<T, M> {
-        &self.whitened
+        self.whitening().1
     }
 
     /// The post-fit residual `z − H x⁺ = (I − H K) ν = R C⁻¹ ν`.
     pub fn post_fit_residual(&self) -> SVector<T, M> {
-        let mut w = self.whitened;
-        solve_lower_transpose(self.factor, &mut w);
+        let mut w = *self.whitened_innovation();
+        solve_lower_transpose(self.factor(), &mut w);
         mul_vector(self.noise, &w)
     }
 
@@ -141,7 +219,7 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
     pub fn post_fit_residual_and_covariance(&self) -> (SVector<T, M>, SMatrix<T, M, M>) {
         let (covariance, gt) = self.covariance_and_gt();
         (
-            self.innovation - mul_vector(&gt, &self.whitened),
+            self.innovation - mul_vector(&gt, self.whitened_innovation()),
             covariance,
         )
     }
@@ -149,7 +227,7 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
     /// `H_p − GᵀG` and `Gᵀ`, for `G = L⁻¹ H_p`.
     fn covariance_and_gt(&self) -> (SMatrix<T, M, M>, SMatrix<T, M, M>) {
         let mut g = *self.predicted;
-        solve_lower(self.factor, &mut g);
+        solve_lower(self.factor(), &mut g);
         // Gᵀ G as Σₖ (row k of G)ᵀ (row k of G) on the product kernel, one
         // triangle, mirrored: exactly symmetric.
         let gt = g.transpose();

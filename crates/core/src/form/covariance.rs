@@ -1,7 +1,9 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
-use super::outcome::{adapt, factor_of, joseph_gain, nominal_ldl, unadapted_update};
+use super::outcome::{
+    adapt, factor_of, joseph_gain, joseph_gain_on_ldl, nominal_ldl, unadapted_update,
+};
 use super::pending::PendingCovariance;
 use super::{sequential, FadeStates, Form, PredictForm, SequentialUpdates, UpdateForm};
 use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
@@ -26,6 +28,11 @@ use crate::{
 /// faster of the two there; see [`SequentialUpdates`] for the measurements
 /// behind that choice and
 /// [`set_sequential_updates`](Self::set_sequential_updates) to change it.
+///
+/// With adapters, an epoch in which they faded nothing, kept `R` and the
+/// innovation and accepted the measurement is updated as without them, on
+/// the same factorisation of `C`: an adapter that changes nothing gives the
+/// filter without adapters bit for bit (the adapted NIS is then the NIS).
 ///
 /// ```
 /// use kestrel_core::form::{CovarianceForm, Form};
@@ -277,6 +284,33 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         if done.step.is_rejected() {
             let report = done.rejected(nu);
             self.cov.commit(prior);
+            return Ok(report);
+        }
+
+        // An epoch the adapters left as they were: the update without
+        // adapters on the same `L D Lᵀ` (the same arithmetic, so the same
+        // state and covariance as that update), the adapted NIS the nominal
+        // one, and the posterior view's `L √D` and `L⁻¹ ν` formed only if
+        // an adapter reads them. Equal to the way below to rounding.
+        if done.step.is_unchanged()
+            && let Some(r_factor) = r_factor.as_ref()
+        {
+            let c = hph + r;
+            let cross = hp.transpose();
+            let inputs = (&prior, &cross, &hph);
+            let correction = joseph_gain_on_ldl(spare, inputs, (&r, r_factor, &c), &ldl, &nu)?;
+            let x_new = space.add(x, &correction);
+            ensure_finite(&x_new, Quantity::UpdatedState)?;
+            *x = x_new;
+            let total_fade = pending.total_fade(T::one());
+            let factor = (done.step.formed_factor(), &ldl);
+            adapter.after_update(
+                &Posterior::deferred(&nu, &hph, &r, factor),
+                &mut done.adapters,
+            );
+            let nis = done.nis;
+            let report = done.accepted(nu, &c, nis, total_fade);
+            self.cov.commit_spare();
             return Ok(report);
         }
 

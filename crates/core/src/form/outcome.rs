@@ -68,17 +68,41 @@ pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
     innovation: &SVector<T, M>,
 ) -> Result<SVector<T, N>, FilterError> {
     let negated_k = negated_kalman_gain(factor, cross);
+    let inputs = (prior, cross, predicted);
+    joseph_and_correction(
+        covariance,
+        inputs,
+        (noise, noise_factor, c),
+        &negated_k,
+        innovation,
+    )
+}
+
+/// The Joseph update into `covariance` for the gain `−K` and the state
+/// correction `K ν`: the end both gains share.
+#[inline(always)]
+fn joseph_and_correction<T: Real, const N: usize, const M: usize>(
+    covariance: &mut SMatrix<T, N, N>,
+    (prior, cross, predicted): (&SMatrix<T, N, N>, &SMatrix<T, N, M>, &SMatrix<T, M, M>),
+    (noise, noise_factor, c): (
+        &SMatrix<T, M, M>,
+        Option<&SMatrix<T, M, M>>,
+        &SMatrix<T, M, M>,
+    ),
+    negated_k: &SMatrix<T, N, M>,
+    innovation: &SVector<T, M>,
+) -> Result<SVector<T, N>, FilterError> {
     joseph_with_gain(
         covariance,
         prior,
-        &negated_k,
+        negated_k,
         cross,
         predicted,
         noise,
         noise_factor,
         c,
     )?;
-    Ok(correction(&negated_k, innovation))
+    Ok(correction(negated_k, innovation))
 }
 
 /// The Joseph update of [`joseph_gain`] for a gain `−K` already formed.
@@ -136,19 +160,7 @@ where
     let c = predicted + noise;
     let ldl = Ldl::new(&c).map_err(|e| not_pd(e.index))?;
     let nis = ldl.quadratic_form(&innovation);
-    // The same gain bit for bit either way. The right-hand solves work down
-    // the columns of `K`, which vectorises when they are longer than its
-    // rows: 4 % of the `f32` step's instructions at 15 states; where
-    // `N = M` they cost more (benchmark notes, nineteenth round).
-    let negated_k = if const { N > M } {
-        let mut negated_k = SMatrix::from_fn(|i, j| -cross[(i, j)]);
-        ldl.solve_right_in_place(&mut negated_k);
-        negated_k
-    } else {
-        let mut kt = cross.transpose();
-        ldl.solve_in_place(&mut kt);
-        SMatrix::from_fn(|i, j| -kt[(j, i)])
-    };
+    let negated_k = negated_gain_on_ldl(&ldl, cross);
     let spare = cov.spare();
     joseph_with_gain(
         spare,
@@ -166,6 +178,50 @@ where
     let fade = cov.total_fade(T::one());
     cov.commit_spare();
     Ok(unadapted_report(innovation, &c, &noise, nis, fade))
+}
+
+/// `−K = −B C⁻¹` on the `L D Lᵀ` of `C`, for `B = P⁻ Hᵀ`: the gain of the
+/// update without adapters.
+#[inline(always)]
+fn negated_gain_on_ldl<T: Real, const N: usize, const M: usize>(
+    ldl: &Ldl<T, M>,
+    cross: &SMatrix<T, N, M>,
+) -> SMatrix<T, N, M> {
+    // The same gain bit for bit either way. The right-hand solves work down
+    // the columns of `K`, which vectorises when they are longer than its
+    // rows: 4 % of the `f32` step's instructions at 15 states; where
+    // `N = M` they cost more (benchmark notes, nineteenth round).
+    if const { N > M } {
+        let mut negated_k = SMatrix::from_fn(|i, j| -cross[(i, j)]);
+        ldl.solve_right_in_place(&mut negated_k);
+        negated_k
+    } else {
+        let mut kt = cross.transpose();
+        ldl.solve_in_place(&mut kt);
+        SMatrix::from_fn(|i, j| -kt[(j, i)])
+    }
+}
+
+/// [`joseph_gain`] with the gain on the `L D Lᵀ` of `C` rather than on its
+/// Cholesky factor, with `R` through its factor: the arithmetic of the
+/// update without adapters, for an epoch in which the adapters left `R`,
+/// the innovation and the prior as they were. Not inlined: a second copy of
+/// the Joseph update in every adapted update would change how the compiler
+/// inlines the update without adapters (it took the KF step at 6 states
+/// from 6,596 to 7,008 instructions; benchmark notes, twenty-ninth round).
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+pub(crate) fn joseph_gain_on_ldl<T: Real, const N: usize, const M: usize>(
+    covariance: &mut SMatrix<T, N, N>,
+    (prior, cross, predicted): (&SMatrix<T, N, N>, &SMatrix<T, N, M>, &SMatrix<T, M, M>),
+    (noise, noise_factor, c): (&SMatrix<T, M, M>, &SMatrix<T, M, M>, &SMatrix<T, M, M>),
+    ldl: &Ldl<T, M>,
+    innovation: &SVector<T, M>,
+) -> Result<SVector<T, N>, FilterError> {
+    let negated_k = negated_gain_on_ldl(ldl, cross);
+    let inputs = (prior, cross, predicted);
+    let noise = (noise, Some(noise_factor), c);
+    joseph_and_correction(covariance, inputs, noise, &negated_k, innovation)
 }
 
 /// The outcome of an update without adapters: nothing adapted, so the
