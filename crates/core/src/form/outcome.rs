@@ -209,7 +209,6 @@ fn negated_gain_on_ldl<T: Real, const N: usize, const M: usize>(
 /// the Joseph update in every adapted update would change how the compiler
 /// inlines the update without adapters (it took the KF step at 6 states
 /// from 6,596 to 7,008 instructions; benchmark notes, twenty-ninth round).
-#[allow(clippy::too_many_arguments)]
 #[inline(never)]
 pub(crate) fn joseph_gain_on_ldl<T: Real, const N: usize, const M: usize>(
     covariance: &mut SMatrix<T, N, N>,
