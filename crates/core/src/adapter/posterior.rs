@@ -36,20 +36,21 @@ pub struct Posterior<'a, T: Real, const M: usize> {
     whitening: Whitening<'a, T, M>,
 }
 
-/// The lower Cholesky factor `L` of `C` and `L⁻¹ ν`: given, or formed from
-/// the form's `L D Lᵀ` of `C` when an adapter first reads them. Most
-/// adapters never do, and in the epochs they leave as they were the update
+/// The lower Cholesky factor `L` of `C` and `L⁻¹ ν`, each formed when an
+/// adapter first reads it unless the update already had it. Most adapters
+/// never read them, and in the epochs they leave as they were the update
 /// then forms neither.
 #[derive(Debug, Clone)]
-enum Whitening<'a, T: Real, const M: usize> {
-    Given {
-        factor: &'a SMatrix<T, M, M>,
-        whitened: OnceCell<SVector<T, M>>,
-    },
-    Deferred {
-        ldl: &'a Ldl<T, M>,
-        formed: OnceCell<(SMatrix<T, M, M>, SVector<T, M>)>,
-    },
+struct Whitening<'a, T: Real, const M: usize> {
+    factor: Factor<'a, T, M>,
+    whitened: OnceCell<SVector<T, M>>,
+}
+
+/// `L` as the update had it, or `L √D` of the form's `L D Lᵀ` of `C`.
+#[derive(Debug, Clone)]
+enum Factor<'a, T: Real, const M: usize> {
+    Given(&'a SMatrix<T, M, M>),
+    Deferred(&'a Ldl<T, M>, OnceCell<SMatrix<T, M, M>>),
 }
 
 impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
@@ -61,9 +62,15 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
         noise: &'a SMatrix<T, M, M>,
         factor: &'a SMatrix<T, M, M>,
     ) -> Self {
-        let mut whitened = *innovation;
-        solve_lower(factor, &mut whitened);
-        Self::with_whitened(innovation, &whitened, predicted, noise, factor)
+        Self {
+            innovation,
+            predicted,
+            noise,
+            whitening: Whitening {
+                factor: Factor::Given(factor),
+                whitened: OnceCell::new(),
+            },
+        }
     }
 
     /// [`new`](Self::new) with the whitened innovation `L⁻¹ ν` the form has
@@ -80,8 +87,8 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
             innovation,
             predicted,
             noise,
-            whitening: Whitening::Given {
-                factor,
+            whitening: Whitening {
+                factor: Factor::Given(factor),
                 whitened: OnceCell::from(*whitened),
             },
         }
@@ -98,49 +105,27 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
         noise: &'a SMatrix<T, M, M>,
         (factor, ldl): (Option<&'a SMatrix<T, M, M>>, &'a Ldl<T, M>),
     ) -> Self {
-        let whitening = match factor {
-            Some(factor) => Whitening::Given {
-                factor,
-                whitened: OnceCell::new(),
-            },
-            None => Whitening::Deferred {
-                ldl,
-                formed: OnceCell::new(),
-            },
+        let factor = match factor {
+            Some(factor) => Factor::Given(factor),
+            None => Factor::Deferred(ldl, OnceCell::new()),
         };
         Self {
             innovation,
             predicted,
             noise,
-            whitening,
-        }
-    }
-
-    /// `L` and `L⁻¹ ν`.
-    fn whitening(&self) -> (&SMatrix<T, M, M>, &SVector<T, M>) {
-        let whiten = |factor: &SMatrix<T, M, M>| {
-            let mut whitened = *self.innovation;
-            solve_lower(factor, &mut whitened);
-            whitened
-        };
-        match &self.whitening {
-            Whitening::Given { factor, whitened } => {
-                (factor, whitened.get_or_init(|| whiten(factor)))
-            }
-            Whitening::Deferred { ldl, formed } => {
-                let (factor, whitened) = formed.get_or_init(|| {
-                    let factor = ldl.cholesky_factor();
-                    let whitened = whiten(&factor);
-                    (factor, whitened)
-                });
-                (factor, whitened)
-            }
+            whitening: Whitening {
+                factor,
+                whitened: OnceCell::new(),
+            },
         }
     }
 
     /// `L`, the lower Cholesky factor of `C`.
     fn factor(&self) -> &SMatrix<T, M, M> {
-        self.whitening().0
+        match &self.whitening.factor {
+            Factor::Given(factor) => factor,
+            Factor::Deferred(ldl, formed) => formed.get_or_init(|| ldl.cholesky_factor()),
+        }
     }
 
     /// The innovation the update used (after any adapter scaling).
@@ -183,7 +168,11 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
     /// assert_eq!(post.whitened_innovation()[0], 1.0);
     /// ```
     pub fn whitened_innovation(&self) -> &SVector<T, M> {
-        self.whitening().1
+        self.whitening.whitened.get_or_init(|| {
+            let mut whitened = *self.innovation;
+            solve_lower(self.factor(), &mut whitened);
+            whitened
+        })
     }
 
     /// The post-fit residual `z − H x⁺ = (I − H K) ν = R C⁻¹ ν`.
