@@ -1,20 +1,21 @@
 //! Epochs the adapters leave as they were. When no adapter faded, set `R`,
-//! changed the innovation or rejected the measurement, the covariance form
-//! updates as it does without adapters, on the same `L D Lᵀ` of `C`, and
-//! hands the adapters a posterior view that forms `L √D` and `L⁻¹ ν` only
-//! when one of them reads it. So an adapter that changes nothing gives the
-//! filter without adapters bit for bit (state, covariance, report), and
-//! what it reads from the posterior view equals what the full adapter round
-//! gives to rounding.
+//! changed the innovation or rejected the measurement, the covariance and
+//! unscented forms update as they do without adapters, on the same
+//! `L D Lᵀ` of `C`, and hand the adapters a posterior view on it that
+//! computes what an adapter reads only when it reads it. So an adapter that
+//! changes nothing gives the filter without adapters bit for bit (state,
+//! covariance, report), and what it reads from the posterior view equals
+//! what it reads after an adapter round that restated `R` to rounding (bit
+//! for bit, as it happens: the view's own `L D Lᵀ` of the same `C`).
 
 use crate::common;
 
 use common::{dispatch, SIZES};
 use kestrel::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter};
-use kestrel::form::CovarianceForm;
+use kestrel::form::{Form, PredictForm, UnscentedForm, UpdateForm};
 use kestrel::models::{LinearMeasurement, LinearProcess};
 use kestrel::nalgebra::{SMatrix, SVector};
-use kestrel::{Filter, UpdateDetail};
+use kestrel::{Filter, Ukf, UpdateDetail};
 
 /// Relative agreement of the two rounds' posterior views (the factor of
 /// `C` as `L √D` of the form's `L D Lᵀ` or by a Cholesky factorisation;
@@ -130,9 +131,25 @@ fn same<const M: usize>(a: &UpdateDetail<f64, M>, b: &UpdateDetail<f64, M>, what
     assert_eq!(a.noise, b.noise, "{what}");
 }
 
-fn run<const N: usize, const M: usize>(seed: u64) {
+/// A filter of the form under test, built from `x0` and `p0`.
+type Make<F, const N: usize> = fn(SVector<f64, N>, SMatrix<f64, N, N>) -> Filter<f64, N, F>;
+
+fn ukf<const N: usize>(
+    x0: SVector<f64, N>,
+    p0: SMatrix<f64, N, N>,
+) -> Filter<f64, N, UnscentedForm<f64, N>> {
+    Ukf::new(x0, p0).expect("finite")
+}
+
+fn run<F, const N: usize, const M: usize>(make: Make<F, N>, seed: u64)
+where
+    F: Form<f64, N>
+        + Clone
+        + PredictForm<f64, N, LinearProcess<f64, N>>
+        + UpdateForm<f64, N, LinearMeasurement<f64, N, M>, M>,
+{
     let case = common::linear_case::<N, M>(seed, 30, false);
-    let mut plain = common::batch_ekf(case.x0, case.p0);
+    let mut plain = make(case.x0, case.p0);
     let mut quiet = plain.clone().with_adapter(Observer::<M>::new(false, false));
     let mut tested = plain.clone().with_adapter(Observer::<M>::new(false, true));
     for (k, z) in case.measurements.iter().enumerate() {
@@ -178,9 +195,7 @@ fn run<const N: usize, const M: usize>(seed: u64) {
         );
         let nis = |d: &UpdateDetail<f64, M>| SMatrix::<f64, 1, 1>::new(d.report.adapted_nis);
         close(&nis(&d), &nis(&b), &format!("{what}: adapted NIS"));
-        let seen = |f: &Filter<f64, N, CovarianceForm<f64, N>, Observer<M>>| {
-            f.adapter().seen.expect("after_update ran")
-        };
+        let seen = |f: &Filter<f64, N, F, Observer<M>>| f.adapter().seen.expect("after_update ran");
         let (q, t, r) = (seen(&quiet), seen(&tested), seen(&full));
         assert_eq!(q, t, "{what}: the view's factor");
         close(&q.whitened, &r.whitened, &format!("{what}: L⁻¹ ν"));
@@ -206,11 +221,28 @@ fn run<const N: usize, const M: usize>(seed: u64) {
     }
 }
 
+fn covariance<const N: usize, const M: usize>(seed: u64) {
+    run::<_, N, M>(common::batch_ekf, seed);
+}
+
+fn unscented<const N: usize, const M: usize>(seed: u64) {
+    run::<_, N, M>(ukf, seed);
+}
+
 #[test]
 fn an_adapter_that_changes_nothing_gives_the_filter_without_adapters() {
     for seed in 0..3u64 {
         for &size in SIZES {
-            dispatch!(size, run(seed));
+            dispatch!(size, covariance(seed));
+        }
+    }
+}
+
+#[test]
+fn the_unscented_form_too() {
+    for seed in 0..3u64 {
+        for &size in SIZES {
+            dispatch!(size, unscented(seed));
         }
     }
 }

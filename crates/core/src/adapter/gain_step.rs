@@ -104,7 +104,7 @@ pub struct GainStep<'a, T: Real, const M: usize> {
     rejected: bool,
     covariance: SMatrix<T, M, M>,
     /// The lower Cholesky factor of `covariance` (`None`: not positive
-    /// definite), made when first asked for.
+    /// definite), given by the form or made when first asked for.
     factor: OnceCell<Option<SMatrix<T, M, M>>>,
     /// The form's `L D Lᵀ` of the nominal `C` (its check), while
     /// `covariance` is that `C`: the NIS the report gives comes from it,
@@ -112,11 +112,18 @@ pub struct GainStep<'a, T: Real, const M: usize> {
     /// instead of a second factorisation. An adapter that replaces `R`
     /// first (Sage–Husa) never needs the nominal factor at all.
     nominal_ldl: Option<&'a Ldl<T, M>>,
+    /// The `L D Lᵀ` of `covariance` once an adapter changed it, made when
+    /// first needed: the NIS, the Cholesky factor if asked for, and the
+    /// form's gain all come from it (no square roots on the way to the
+    /// gain).
+    ldl: OnceCell<Option<Ldl<T, M>>>,
     /// The factor `noise` was given by ([`GainStep::set_noise_factor`]).
     noise_factor: Option<SMatrix<T, M, M>>,
-    /// `L⁻¹ ν` for the current innovation and factor, once asked for: the
-    /// NIS, an adapter's test and the posterior share one solve.
+    /// `L⁻¹ ν` for the current innovation and factor, once asked for.
     whitened: Cell<Option<SVector<T, M>>>,
+    /// `νᵀ C⁻¹ ν` for the current innovation and `C`, once asked for: the
+    /// report's NIS, the adapters' tests and the adapted NIS share it.
+    nis: Cell<Option<T>>,
 }
 
 impl<T: Real, const M: usize> GainStep<'static, T, M> {
@@ -229,24 +236,55 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
             covariance: predicted + noise,
             factor,
             nominal_ldl,
+            ldl: OnceCell::new(),
             noise_factor: None,
             whitened: Cell::new(None),
+            nis: Cell::new(None),
         }
     }
 
-    /// Whether the adapters left the view as the form built it on its
-    /// `L D Lᵀ`: `C` the nominal one (no fade, no new `R`), the innovation
-    /// the raw one, the measurement not rejected. Then the update needs
-    /// nothing the adapters could have changed.
+    /// The `L D Lᵀ` of the current `C`: the form's while `C` is the
+    /// nominal one, else the view's own, made now if no adapter needed it
+    /// yet; `None` if `C` is not positive definite, or for a view the form
+    /// built on a Cholesky factor that no adapter changed.
     #[inline(always)]
-    pub(crate) fn is_unchanged(&self) -> bool {
-        self.nominal_ldl.is_some() && !self.rejected && self.innovation == self.raw_innovation
+    pub(crate) fn ldl(&self) -> Option<&Ldl<T, M>> {
+        match self.nominal_ldl {
+            Some(ldl) => Some(ldl),
+            None if self.on_given_factor() => None,
+            None => self
+                .ldl
+                .get_or_init(|| Ldl::new(&self.covariance).ok())
+                .as_ref(),
+        }
     }
 
-    /// The factor of `C` if an adapter's test has formed it already.
+    /// The `L D Lᵀ` of `C` as the adapters left it and the NIS of the
+    /// innovation used (computed once, shared with the adapters' tests);
+    /// `None` when something faded (`fade ≠ 1`: the form then factors `C`
+    /// from the faded prior itself) or the adapters left `C` indefinite.
+    #[inline(always)]
+    pub(crate) fn used_factorisation(&self, fade: T) -> Option<(&Ldl<T, M>, T)> {
+        if fade != T::one() {
+            return None;
+        }
+        let ldl = self.ldl()?;
+        Some((ldl, self.mahalanobis()?))
+    }
+
+    /// The Cholesky factor of `C` if the view holds it already (given by
+    /// the form, or formed for an adapter), without forming it.
     #[inline(always)]
     pub(crate) fn formed_factor(&self) -> Option<&SMatrix<T, M, M>> {
         self.factor.get().and_then(Option::as_ref)
+    }
+
+    /// Whether the view is still on the Cholesky factor a form built it
+    /// with ([`with_factor`](GainStep::with_factor)): no adapter changed
+    /// `C` since.
+    #[inline(always)]
+    fn on_given_factor(&self) -> bool {
+        self.ldl.get().is_none() && self.factor.get().is_some_and(Option::is_some)
     }
 
     /// `H P⁻ Hᵀ + R` as the form gave them, before any adapter.
@@ -301,28 +339,25 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
     /// `None` if an adapter made it indefinite.
     pub fn innovation_factor(&self) -> Option<&SMatrix<T, M, M>> {
         self.factor
-            .get_or_init(|| match self.nominal_ldl {
-                Some(ldl) => Some(ldl.cholesky_factor()),
-                None => cholesky(&self.covariance).ok(),
-            })
+            .get_or_init(|| self.ldl().map(Ldl::cholesky_factor))
             .as_ref()
     }
 
-    /// The NIS of the innovation against `C` as the form built the view,
-    /// before any adapter: from the form's `L D Lᵀ` when it gave one (no
-    /// Cholesky factor needed), else [`mahalanobis`](Self::mahalanobis).
-    #[inline(always)]
-    pub(crate) fn nominal_mahalanobis(&self) -> Option<T> {
-        match self.nominal_ldl {
-            Some(ldl) => Some(ldl.quadratic_form(&self.innovation)),
-            None => self.mahalanobis(),
-        }
-    }
-
     /// `νᵀ C⁻¹ ν` for the current innovation and covariance (the NIS); `None`
-    /// if `C` is not positive definite.
+    /// if `C` is not positive definite. From the `L D Lᵀ` of `C` (`Σ yₖ² /
+    /// dₖ` for `y = L⁻¹ ν`) where the view has one, else from its Cholesky
+    /// factor; computed once for the current innovation and `C`, whichever
+    /// adapter asks first.
     pub fn mahalanobis(&self) -> Option<T> {
-        self.whitened_innovation().map(|w| w.norm_squared())
+        if let Some(nis) = self.nis.get() {
+            return Some(nis);
+        }
+        let nis = match self.ldl() {
+            Some(ldl) => ldl.quadratic_form(&self.innovation),
+            None => self.whitened_innovation()?.norm_squared(),
+        };
+        self.nis.set(Some(nis));
+        Some(nis)
     }
 
     /// The whitened innovation `L⁻¹ ν` for `C = L Lᵀ` (its squared norm is
@@ -482,6 +517,7 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
     /// Multiplies the innovation by `s` (outlier compression).
     pub fn scale_innovation(&mut self, s: T) {
         self.whitened.set(None);
+        self.nis.set(None);
         self.innovation *= s;
         self.innovation_scale *= s;
     }
@@ -490,6 +526,7 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
     /// differently).
     pub fn set_innovation(&mut self, innovation: SVector<T, M>) {
         self.whitened.set(None);
+        self.nis.set(None);
         self.innovation = innovation;
     }
 
@@ -501,6 +538,7 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
 
     fn refresh(&mut self) {
         self.whitened.set(None);
+        self.nis.set(None);
         // Unfaded, `predicted_covariance` is the nominal one: added in
         // place rather than through its copy.
         self.covariance = if self.fade == T::one() {
@@ -510,6 +548,7 @@ impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
         };
         // Factored when first asked for: a fade then a new `R` factor once.
         self.factor = OnceCell::new();
+        self.ldl = OnceCell::new();
         self.nominal_ldl = None;
     }
 }
@@ -624,11 +663,7 @@ mod nominal_ldl_tests {
         // Nothing factored until asked.
         assert!(from_ldl.factor.get().is_none());
         let nis = reference.mahalanobis().unwrap();
-        assert_relative_eq!(
-            from_ldl.nominal_mahalanobis().unwrap(),
-            nis,
-            epsilon = 1e-13
-        );
+        assert_relative_eq!(from_ldl.mahalanobis().unwrap(), nis, epsilon = 1e-13);
         assert!(from_ldl.factor.get().is_none(), "the NIS needs no factor");
         // Asked: L √D, the Cholesky factor to rounding; then the same NIS.
         let l = from_ldl.innovation_factor().unwrap();
@@ -648,12 +683,28 @@ mod nominal_ldl_tests {
         let mut step = GainStep::with_ldl(nu, hph, None, r, &ldl);
         let r2 = r * 4.0;
         step.set_noise(r2);
-        // The factor is that of H P⁻ Hᵀ + 4 R, not L √D of the nominal C.
+        // The NIS is that of H P⁻ Hᵀ + 4 R, from its own L D Lᵀ (no
+        // Cholesky factor formed), not that of the nominal C.
+        let own = Ldl::new(&(hph + r2)).unwrap();
+        assert_eq!(step.mahalanobis(), Some(own.quadratic_form(&nu)));
+        assert_ne!(step.mahalanobis(), Some(ldl.quadratic_form(&nu)));
+        assert!(step.factor.get().is_none(), "the NIS needs no factor");
+        // Asked for, the factor is L √D of that L D Lᵀ: the Cholesky factor
+        // to rounding, and the NIS through it the same to rounding.
         let expected = crate::linalg::cholesky(&(hph + r2)).unwrap();
-        assert_eq!(*step.innovation_factor().unwrap(), expected);
+        assert_eq!(*step.innovation_factor().unwrap(), own.cholesky_factor());
+        assert_relative_eq!(
+            *step.innovation_factor().unwrap(),
+            expected,
+            epsilon = 1e-14
+        );
         let mut w = nu;
         crate::linalg::solve_lower(&expected, &mut w);
-        assert_eq!(step.mahalanobis(), Some(w.norm_squared()));
+        assert_relative_eq!(
+            step.mahalanobis().unwrap(),
+            w.norm_squared(),
+            max_relative = 1e-13
+        );
         // An indefinite replacement: no factor, no NIS.
         step.set_noise(-r2 * 10.0);
         assert!(step.innovation_factor().is_none());

@@ -66,11 +66,13 @@ pub trait PriorAdapter<T: Real> {
 /// `R`, scale the innovation, fade the propagated covariance, or reject the
 /// measurement; the form recomputes what changed, applies the gain, and
 /// [`after_update`](Self::after_update) may learn from the result (for example
-/// estimate `R` from the post-fit residual). In the covariance form, an
-/// epoch in which the adapters changed nothing is updated as without
-/// adapters (the same state, covariance and report, bit for bit), and the
-/// [`Posterior`] view forms the factor of `C` and the whitened innovation
-/// only when `after_update` first reads them.
+/// estimate `R` from the post-fit residual). In the covariance and
+/// unscented forms the gain is taken on an `L D Lᵀ` of `C` as the adapters
+/// left it (the form's own while they kept `R` and the fade), so an epoch
+/// in which the adapters changed nothing is updated as without adapters
+/// (the same state, covariance and report, bit for bit), and the
+/// [`Posterior`] view computes on that `L D Lᵀ` only what `after_update`
+/// reads.
 #[diagnostic::on_unimplemented(
     message = "the noise adapter `{Self}` does not work on {M}-dimensional measurements",
     label = "the filter's adapter fixes the measurement size of `update`",

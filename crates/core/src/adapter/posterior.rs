@@ -3,7 +3,7 @@ use core::cell::OnceCell;
 use nalgebra::{SMatrix, SVector};
 
 use crate::linalg::{
-    add_products, mirror_lower, mul_vector, solve_lower, solve_lower_transpose, Ldl,
+    add_scaled, mirror_lower, mul_vector, solve_lower, solve_lower_transpose, Ldl,
 };
 use crate::Real;
 
@@ -15,9 +15,10 @@ use crate::Real;
 /// dimension: the post-fit residual `(I − H K) ν = R C⁻¹ ν` and the
 /// posterior measurement covariance `H P⁺ Hᵀ = H_p − H_p C⁻¹ H_p`.
 /// (Exact for linear models; the unscented forms use their statistical
-/// linearisation.) What needs the lower Cholesky factor `L` of `C` or
-/// `L⁻¹ ν` computes them when first asked, once, if the update did not
-/// already have them.
+/// linearisation.) What needs `L⁻¹` for the lower Cholesky factor `L` of
+/// `C` (the whitened innovation, the posterior covariance) is computed when
+/// an adapter first asks, and `L⁻¹ ν` once, if the update did not already
+/// have it.
 ///
 /// ```
 /// use kestrel_core::adapter::Posterior;
@@ -33,24 +34,19 @@ pub struct Posterior<'a, T: Real, const M: usize> {
     innovation: &'a SVector<T, M>,
     predicted: &'a SMatrix<T, M, M>,
     noise: &'a SMatrix<T, M, M>,
-    whitening: Whitening<'a, T, M>,
-}
-
-/// The lower Cholesky factor `L` of `C` and `L⁻¹ ν`, each formed when an
-/// adapter first reads it unless the update already had it. Most adapters
-/// never read them, and in the epochs they leave as they were the update
-/// then forms neither.
-#[derive(Debug, Clone)]
-struct Whitening<'a, T: Real, const M: usize> {
     factor: Factor<'a, T, M>,
+    /// `L⁻¹ ν`, formed when first read unless the update had it.
     whitened: OnceCell<SVector<T, M>>,
 }
 
-/// `L` as the update had it, or `L √D` of the form's `L D Lᵀ` of `C`.
-#[derive(Debug, Clone)]
+/// How `C` is factored: its lower Cholesky factor `L`, or the form's
+/// `L₁ D L₁ᵀ` (unit `L₁`), for which `L = L₁ √D` is never formed: the
+/// posterior covariance and residual take `D⁻¹` as weights (no square
+/// roots, no divisions), and `L⁻¹ ν` is `√D⁻¹ L₁⁻¹ ν`.
+#[derive(Debug, Clone, Copy)]
 enum Factor<'a, T: Real, const M: usize> {
-    Given(&'a SMatrix<T, M, M>),
-    Deferred(&'a Ldl<T, M>, OnceCell<SMatrix<T, M, M>>),
+    Cholesky(&'a SMatrix<T, M, M>),
+    Ldl(&'a Ldl<T, M>),
 }
 
 impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
@@ -66,10 +62,8 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
             innovation,
             predicted,
             noise,
-            whitening: Whitening {
-                factor: Factor::Given(factor),
-                whitened: OnceCell::new(),
-            },
+            factor: Factor::Cholesky(factor),
+            whitened: OnceCell::new(),
         }
     }
 
@@ -87,44 +81,43 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
             innovation,
             predicted,
             noise,
-            whitening: Whitening {
-                factor: Factor::Given(factor),
-                whitened: OnceCell::from(*whitened),
-            },
+            factor: Factor::Cholesky(factor),
+            whitened: OnceCell::from(*whitened),
         }
     }
 
-    /// The view on `C`'s lower Cholesky factor `factor`, or, without it, on
-    /// the form's `L D Lᵀ` of `C`; `L √D` and `L⁻¹ ν` are formed only when
-    /// an adapter first reads them, by the same arithmetic as the adapter
-    /// way (so the same bits).
+    /// The view on the form's `L D Lᵀ` of `C`: nothing is computed until an
+    /// adapter reads it.
     #[inline(always)]
-    pub(crate) fn deferred(
+    pub(crate) fn on_ldl(
         innovation: &'a SVector<T, M>,
         predicted: &'a SMatrix<T, M, M>,
         noise: &'a SMatrix<T, M, M>,
-        (factor, ldl): (Option<&'a SMatrix<T, M, M>>, &'a Ldl<T, M>),
+        ldl: &'a Ldl<T, M>,
     ) -> Self {
-        let factor = match factor {
-            Some(factor) => Factor::Given(factor),
-            None => Factor::Deferred(ldl, OnceCell::new()),
-        };
         Self {
             innovation,
             predicted,
             noise,
-            whitening: Whitening {
-                factor,
-                whitened: OnceCell::new(),
-            },
+            factor: Factor::Ldl(ldl),
+            whitened: OnceCell::new(),
         }
     }
 
-    /// `L`, the lower Cholesky factor of `C`.
-    fn factor(&self) -> &SMatrix<T, M, M> {
-        match &self.whitening.factor {
-            Factor::Given(factor) => factor,
-            Factor::Deferred(ldl, formed) => formed.get_or_init(|| ldl.cholesky_factor()),
+    /// `B ← L⁻¹ B` for the lower Cholesky factor `L` of `C` (on the form's
+    /// `L₁ D L₁ᵀ`, `L⁻¹ = √D⁻¹ L₁⁻¹`).
+    fn whiten<const K: usize>(&self, b: &mut SMatrix<T, M, K>) {
+        match &self.factor {
+            Factor::Cholesky(l) => solve_lower(l, b),
+            Factor::Ldl(ldl) => {
+                ldl.solve_unit_lower_in_place(b);
+                let roots = ldl.inverse_pivots().map(|inv_d| inv_d.sqrt());
+                for mut column in b.column_iter_mut() {
+                    for (v, root) in column.iter_mut().zip(&roots) {
+                        *v *= *root;
+                    }
+                }
+            }
         }
     }
 
@@ -151,8 +144,13 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
     /// `C⁻¹ v`.
     pub fn solve(&self, v: &SVector<T, M>) -> SVector<T, M> {
         let mut w = *v;
-        solve_lower(self.factor(), &mut w);
-        solve_lower_transpose(self.factor(), &mut w);
+        match &self.factor {
+            Factor::Cholesky(l) => {
+                solve_lower(l, &mut w);
+                solve_lower_transpose(l, &mut w);
+            }
+            Factor::Ldl(ldl) => ldl.solve_in_place(&mut w),
+        }
         w
     }
 
@@ -168,17 +166,23 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
     /// assert_eq!(post.whitened_innovation()[0], 1.0);
     /// ```
     pub fn whitened_innovation(&self) -> &SVector<T, M> {
-        self.whitening.whitened.get_or_init(|| {
+        self.whitened.get_or_init(|| {
             let mut whitened = *self.innovation;
-            solve_lower(self.factor(), &mut whitened);
+            self.whiten(&mut whitened);
             whitened
         })
     }
 
     /// The post-fit residual `z − H x⁺ = (I − H K) ν = R C⁻¹ ν`.
     pub fn post_fit_residual(&self) -> SVector<T, M> {
-        let mut w = *self.whitened_innovation();
-        solve_lower_transpose(self.factor(), &mut w);
+        let w = match &self.factor {
+            Factor::Cholesky(l) => {
+                let mut w = *self.whitened_innovation();
+                solve_lower_transpose(l, &mut w);
+                w
+            }
+            Factor::Ldl(_) => self.solve(self.innovation),
+        };
         mul_vector(self.noise, &w)
     }
 
@@ -207,22 +211,135 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
     /// ```
     pub fn post_fit_residual_and_covariance(&self) -> (SVector<T, M>, SMatrix<T, M, M>) {
         let (covariance, gt) = self.covariance_and_gt();
-        (
-            self.innovation - mul_vector(&gt, self.whitened_innovation()),
-            covariance,
-        )
+        // `Gᵀ (L⁻¹ ν)`; on `L₁ D L₁ᵀ`, `Gᵀ D⁻¹ (L₁⁻¹ ν)` with `G = L₁⁻¹ H_p`.
+        let projected = match self.factor {
+            Factor::Cholesky(_) => mul_vector(&gt, self.whitened_innovation()),
+            Factor::Ldl(ldl) => {
+                let mut y = *self.innovation;
+                ldl.solve_unit_lower_in_place(&mut y);
+                let inv_d = ldl.inverse_pivots();
+                mul_vector(&gt, &SVector::from_fn(|k, _| y[k] * inv_d[k]))
+            }
+        };
+        (self.innovation - projected, covariance)
     }
 
-    /// `H_p − GᵀG` and `Gᵀ`, for `G = L⁻¹ H_p`.
+    /// `H_p − GᵀG` and `Gᵀ`, for `G = L⁻¹ H_p`; on the form's `L₁ D L₁ᵀ`,
+    /// `H_p − Gᵀ D⁻¹ G` and `Gᵀ` for `G = L₁⁻¹ H_p`.
     fn covariance_and_gt(&self) -> (SMatrix<T, M, M>, SMatrix<T, M, M>) {
         let mut g = *self.predicted;
-        solve_lower(self.factor(), &mut g);
-        // Gᵀ G as Σₖ (row k of G)ᵀ (row k of G) on the product kernel, one
-        // triangle, mirrored: exactly symmetric.
+        let weights = match self.factor {
+            Factor::Cholesky(l) => {
+                solve_lower(l, &mut g);
+                [T::one(); M]
+            }
+            Factor::Ldl(ldl) => {
+                ldl.solve_unit_lower_in_place(&mut g);
+                *ldl.inverse_pivots()
+            }
+        };
+        // Gᵀ W G as Σₖ wₖ (row k of G)ᵀ (row k of G), a column at a time,
+        // then mirrored: exactly symmetric.
         let gt = g.transpose();
         let mut gram = SMatrix::zeros();
-        add_products(&mut gram, None, [&gt], [&gt], true);
+        for j in 0..M {
+            let mut acc = [T::zero(); M];
+            for (k, row) in gt.data.0.iter().enumerate() {
+                add_scaled(&mut acc, row, gt[(j, k)] * weights[k]);
+            }
+            gram.data.0[j] = acc;
+        }
         mirror_lower(&mut gram);
         (self.predicted - gram, gt)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use approx::assert_relative_eq;
+    use nalgebra::{Matrix1, Vector1};
+
+    use super::*;
+    use crate::linalg::cholesky;
+
+    /// The view on `L D Lᵀ` (weights `D⁻¹`, no square roots) reads what
+    /// the view on the Cholesky factor reads, to rounding, at sizes on both
+    /// sides of the unrolled solves; the covariance exactly symmetric.
+    #[test]
+    fn the_view_on_l_d_lt_equals_the_view_on_the_cholesky_factor() {
+        fn check<const M: usize>(seed: usize) {
+            let a = SMatrix::<f64, M, M>::from_fn(|i, j| {
+                ((i * 7 + j * 3 + i * j + seed * 5) as f64 * 0.37).sin()
+            });
+            let b = SMatrix::<f64, M, M>::from_fn(|i, j| {
+                ((i * 2 + j * 11 + seed) as f64 * 0.53).cos() * 0.3
+            });
+            let hp = a * a.transpose() + SMatrix::identity() * 0.2;
+            let r = b * b.transpose() + SMatrix::identity() * 0.05;
+            let nu = SVector::<f64, M>::from_fn(|i, _| ((i + seed) as f64 * 1.3).sin() * 2.0);
+            let c = hp + r;
+            let l = cholesky(&c).unwrap();
+            let ldl = Ldl::new(&c).unwrap();
+            let by_cholesky = Posterior::new(&nu, &hp, &r, &l);
+            let on_ldl = Posterior::on_ldl(&nu, &hp, &r, &ldl);
+            let what = (M, seed);
+            let rel = 1e-13;
+            assert_relative_eq!(
+                *on_ldl.whitened_innovation(),
+                *by_cholesky.whitened_innovation(),
+                epsilon = rel * nu.amax()
+            );
+            assert_relative_eq!(
+                on_ldl.solve(&nu),
+                by_cholesky.solve(&nu),
+                epsilon = rel * by_cholesky.solve(&nu).amax()
+            );
+            // Differences: their rounding is relative to what they are the
+            // difference of.
+            let (e, p) = on_ldl.post_fit_residual_and_covariance();
+            let (e_ref, p_ref) = by_cholesky.post_fit_residual_and_covariance();
+            assert!(
+                (e - e_ref).amax() <= rel * nu.amax(),
+                "{what:?}: {e} vs {e_ref}"
+            );
+            assert!(
+                (p - p_ref).amax() <= rel * hp.amax(),
+                "{what:?}: {p} vs {p_ref}"
+            );
+            assert_eq!(p, p.transpose(), "{what:?}");
+            assert_eq!(p, on_ldl.posterior_covariance(), "{what:?}");
+            let alone = on_ldl.post_fit_residual();
+            assert!(
+                (alone - e_ref).amax() <= rel * nu.amax(),
+                "{what:?}: {alone}"
+            );
+            // And the quantities themselves: R C⁻¹ ν and H_p − H_p C⁻¹ H_p.
+            let inverse = c.try_inverse().unwrap();
+            assert_relative_eq!(e, r * inverse * nu, epsilon = 1e-10);
+            assert_relative_eq!(p, hp - hp * inverse * hp, epsilon = 1e-10);
+        }
+        for seed in 0..4 {
+            check::<1>(seed);
+            check::<2>(seed);
+            check::<3>(seed);
+            check::<6>(seed);
+            check::<12>(seed);
+        }
+    }
+
+    /// Hand-computed: `H_p = 3`, `R = 1`, `C = 4 = 1 · 4 · 1`, `ν = 2`:
+    /// `L₁⁻¹ ν = 2`, whitened `2 √¼ = 1`; `G = 3`, `H P⁺ Hᵀ = 3 − 3 · ¼ · 3
+    /// = 0.75`; the residual `2 − 3 · ¼ · 2 = 0.5` (the type's example, on
+    /// the Cholesky factor 2).
+    #[test]
+    fn a_hand_computed_view_on_l_d_lt() {
+        let (nu, hp, r) = (Vector1::new(2.0), Matrix1::new(3.0), Matrix1::new(1.0));
+        let ldl = Ldl::new(&Matrix1::new(4.0)).unwrap();
+        let post = Posterior::on_ldl(&nu, &hp, &r, &ldl);
+        assert_eq!(post.whitened_innovation()[0], 1.0);
+        assert_eq!(post.solve(&nu)[0], 0.5);
+        let (e, p) = post.post_fit_residual_and_covariance();
+        assert_eq!((e[0], p[0]), (0.5, 0.75));
+        assert_eq!(post.post_fit_residual()[0], 0.5);
     }
 }

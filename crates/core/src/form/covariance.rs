@@ -2,7 +2,7 @@ use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
 use super::outcome::{
-    adapt, factor_of, joseph_gain, joseph_gain_on_ldl, nominal_ldl, unadapted_update,
+    adapt, joseph_gain_on_ldl, nominal_ldl, unadapted_update, used_factorisation,
 };
 use super::pending::PendingCovariance;
 use super::{sequential, FadeStates, Form, PredictForm, SequentialUpdates, UpdateForm};
@@ -29,9 +29,11 @@ use crate::{
 /// behind that choice and
 /// [`set_sequential_updates`](Self::set_sequential_updates) to change it.
 ///
-/// With adapters, an epoch in which they faded nothing, kept `R` and the
-/// innovation and accepted the measurement is updated as without them, on
-/// the same factorisation of `C`: an adapter that changes nothing gives the
+/// With adapters, the gain is taken on the `L D Lᵀ` of `C` as they left
+/// it (no square roots on the way to the gain): the nominal one while they
+/// faded nothing and kept `R`, the adapter view's own after a new `R`. So
+/// an epoch in which they changed nothing is updated as without them, on
+/// the same factorisation: an adapter that changes nothing gives the
 /// filter without adapters bit for bit (the adapted NIS is then the NIS).
 ///
 /// ```
@@ -227,7 +229,8 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         ensure_finite(&nu, Quantity::Measurement).or_else(nu_check)?;
         let prior = self.cov.prior(T::one());
 
-        if diagonal {
+        // Without a factor of `R` (diagonal, taken one component at a time).
+        let Some(r_factor) = r_factor.as_ref() else {
             let out = sequential::update(&prior, &h, &r, &nu)?;
             let x_new = space.add(x, &out.correction);
             ensure_finite(&x_new, Quantity::UpdatedState)?;
@@ -246,14 +249,12 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             };
             let c = &out.innovation_covariance;
             return Ok(O::assemble(report, c, c, &r));
-        }
+        };
 
-        // Without an adapter R is dense here (a diagonal one went the
-        // sequential way), so its factor is at hand.
-        // The update then leaves out every adapter step (nothing to adapt,
-        // nothing to copy into a `GainStep`); equal to the general path to
-        // rounding, as a test checks.
-        if let (true, Some(r_factor)) = (A::IS_IDENTITY, r_factor.as_ref()) {
+        // Without an adapter the update leaves out every adapter step
+        // (nothing to adapt, nothing to copy into a `GainStep`); equal to
+        // the general path to rounding, as a test checks.
+        if A::IS_IDENTITY {
             let hp = h * prior;
             let hph = sandwich_transposed(&hp, &h);
             let noise = (r, r_factor);
@@ -287,33 +288,6 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
             return Ok(report);
         }
 
-        // An epoch the adapters left as they were: the update without
-        // adapters on the same `L D Lᵀ` (the same arithmetic, so the same
-        // state and covariance as that update), the adapted NIS the nominal
-        // one, and the posterior view's `L √D` and `L⁻¹ ν` formed only if
-        // an adapter reads them. Equal to the way below to rounding.
-        if done.step.is_unchanged()
-            && let Some(r_factor) = r_factor.as_ref()
-        {
-            let c = hph + r;
-            let cross = hp.transpose();
-            let inputs = (&prior, &cross, &hph);
-            let correction = joseph_gain_on_ldl(spare, inputs, (&r, r_factor, &c), &ldl, &nu)?;
-            let x_new = space.add(x, &correction);
-            ensure_finite(&x_new, Quantity::UpdatedState)?;
-            *x = x_new;
-            let total_fade = pending.total_fade(T::one());
-            let factor = (done.step.formed_factor(), &ldl);
-            adapter.after_update(
-                &Posterior::deferred(&nu, &hph, &r, factor),
-                &mut done.adapters,
-            );
-            let nis = done.nis;
-            let report = done.accepted(nu, &c, nis, total_fade);
-            self.cov.commit_spare();
-            return Ok(report);
-        }
-
         // Borrowed, not moved: the matrices are hundreds of bytes each.
         let refaded;
         let (prior, hp, hph) = if fade == T::one() {
@@ -329,19 +303,17 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         done.check_used()?;
         let (r_used, nu_used) = (done.step.noise(), done.step.innovation());
         let c = hph + r_used;
-        let r_factor = done.noise_factor(r_factor.as_ref());
-        // The view's factor of `C` is this `C`'s only when nothing faded
-        // (a fade recomputes `predicted` from the faded prior, which rounds
-        // differently from the view's update).
-        let known = (fade == T::one())
-            .then(|| done.step.innovation_factor())
-            .flatten();
-        let mut computed = None;
-        let factor = factor_of(&c, known, &mut computed)?;
+        let r_factor = done.noise_factor(Some(r_factor));
+        // The view's factorisation of `C` is this `C`'s only when nothing
+        // faded (a fade recomputes `predicted` from the faded prior, which
+        // rounds differently from the view's update). In an epoch the
+        // adapters left as they were it is the nominal `L D Lᵀ`, and this
+        // is the update without adapters, bit for bit.
+        let mut fresh = None;
+        let (ldl, adapted_nis) = used_factorisation(done.step, fade, &c, &mut fresh)?;
         let cross = hp.transpose();
-        let correction = joseph_gain(
-            spare, prior, &cross, hph, r_used, r_factor, &c, factor, nu_used,
-        )?;
+        let inputs = (prior, &cross, hph);
+        let correction = joseph_gain_on_ldl(spare, inputs, (r_used, r_factor, &c), ldl, nu_used)?;
         let x_new = space.add(x, &correction);
         ensure_finite(&x_new, Quantity::UpdatedState)?;
 
@@ -349,12 +321,11 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         // posterior in the spare buffer becomes current.
         *x = x_new;
         let total_fade = pending.total_fade(fade);
-        let white = done.whitened(factor);
         adapter.after_update(
-            &Posterior::with_whitened(nu_used, &white, hph, r_used, factor),
+            &Posterior::on_ldl(nu_used, hph, r_used, ldl),
             &mut done.adapters,
         );
-        let report = done.accepted(nu, &c, white.norm_squared(), total_fade);
+        let report = done.accepted(nu, &c, adapted_nis, total_fade);
         self.cov.commit_spare();
         Ok(report)
     }

@@ -7,8 +7,7 @@ use super::pending::PendingCovariance;
 use crate::adapter::{GainStep, NoiseAdapter};
 use crate::error::ensure_finite;
 use crate::linalg::{
-    cholesky, cholesky_semidefinite, joseph_expanded, joseph_factored_noise_negated, solve_lower,
-    solve_right_cholesky, Ldl,
+    cholesky_semidefinite, joseph_expanded, joseph_factored_noise_negated, solve_lower, Ldl,
 };
 use crate::{FilterError, Quantity, Real, StateSpace, UpdateOutcome, UpdateReport};
 
@@ -22,90 +21,18 @@ fn correction<T: Real, const N: usize, const M: usize>(
     -(negated_k * innovation)
 }
 
-/// `−K = −B C⁻¹` from the lower Cholesky factor `L` of `C` and `B`: `−B`,
-/// then the two triangular solves from the right
-/// ([`solve_right_cholesky`]), down the `M` columns, each pivot one scaled
-/// subtraction of a whole `N`-long column (the left-hand solves of `Bᵀ` ran
-/// one row of `B` at a time through the `M` pivots, scalar code at
-/// `M = 6`). The solves are linear and negation is exact, so this is
-/// `−(L⁻ᵀ L⁻¹ Bᵀ)ᵀ` bit for bit.
-#[inline]
-pub(crate) fn negated_kalman_gain<T: Real, const N: usize, const M: usize>(
-    factor: &SMatrix<T, M, M>,
-    cross: &SMatrix<T, N, M>,
-) -> SMatrix<T, N, M> {
-    let mut negated_k = SMatrix::from_fn(|i, j| -cross[(i, j)]);
-    solve_right_cholesky(factor, &mut negated_k);
-    negated_k
-}
-
-/// The gain `K = B C⁻¹` (by [`negated_kalman_gain`]) and the expanded
-/// Joseph update of `prior` (written into `covariance`), for the cross
-/// covariance `B = P⁻ Hᵀ` (or `P_xz`), the predicted measurement covariance
-/// `predicted`
-/// (`H P⁻ Hᵀ` or `P_zz`), the noise `noise` (with its lower Cholesky factor
-/// `noise_factor` when the caller has it) and `c = predicted + noise`.
-/// `factor` is the lower Cholesky factor of `c` (see [`factor_of`]).
-/// Returns the state correction `K ν` for the innovation `innovation`: the
-/// gain itself stays here (moved out by value it was copied twice a step,
-/// `N M` elements each; benchmark notes, nineteenth round).
+/// The expanded Joseph update of `prior` into `covariance` for the gain
+/// `−K` already formed, the cross covariance `b` (`P⁻ Hᵀ` or `P_xz`), the
+/// predicted measurement covariance `predicted` (`H P⁻ Hᵀ` or `P_zz`), the
+/// noise `noise` (with its lower Cholesky factor `noise_factor` when the
+/// caller has it) and `c = predicted + noise`.
 ///
 /// `R` enters the covariance through its factor
 /// ([`joseph_factored_noise`](crate::linalg::joseph_factored_noise)):
 /// through `C`, the rounding of `K C Kᵀ` can make the posterior indefinite
-/// when `C` is badly conditioned (an estimated `R` in `f32`). An `R` without a semi-definite factor is not a
-/// covariance; it keeps [`joseph_expanded`] with `C`.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn joseph_gain<T: Real, const N: usize, const M: usize>(
-    covariance: &mut SMatrix<T, N, N>,
-    prior: &SMatrix<T, N, N>,
-    cross: &SMatrix<T, N, M>,
-    predicted: &SMatrix<T, M, M>,
-    noise: &SMatrix<T, M, M>,
-    noise_factor: Option<&SMatrix<T, M, M>>,
-    c: &SMatrix<T, M, M>,
-    factor: &SMatrix<T, M, M>,
-    innovation: &SVector<T, M>,
-) -> Result<SVector<T, N>, FilterError> {
-    let negated_k = negated_kalman_gain(factor, cross);
-    let inputs = (prior, cross, predicted);
-    joseph_and_correction(
-        covariance,
-        inputs,
-        (noise, noise_factor, c),
-        &negated_k,
-        innovation,
-    )
-}
-
-/// The Joseph update into `covariance` for the gain `−K` and the state
-/// correction `K ν`: the end both gains share.
-#[inline(always)]
-fn joseph_and_correction<T: Real, const N: usize, const M: usize>(
-    covariance: &mut SMatrix<T, N, N>,
-    (prior, cross, predicted): (&SMatrix<T, N, N>, &SMatrix<T, N, M>, &SMatrix<T, M, M>),
-    (noise, noise_factor, c): (
-        &SMatrix<T, M, M>,
-        Option<&SMatrix<T, M, M>>,
-        &SMatrix<T, M, M>,
-    ),
-    negated_k: &SMatrix<T, N, M>,
-    innovation: &SVector<T, M>,
-) -> Result<SVector<T, N>, FilterError> {
-    joseph_with_gain(
-        covariance,
-        prior,
-        negated_k,
-        cross,
-        predicted,
-        noise,
-        noise_factor,
-        c,
-    )?;
-    Ok(correction(negated_k, innovation))
-}
-
-/// The Joseph update of [`joseph_gain`] for a gain `−K` already formed.
+/// when `C` is badly conditioned (an estimated `R` in `f32`). An `R`
+/// without a semi-definite factor is not a covariance; it keeps
+/// [`joseph_expanded`] with `C`.
 #[allow(clippy::too_many_arguments)]
 #[inline]
 fn joseph_with_gain<T: Real, const N: usize, const M: usize>(
@@ -138,8 +65,7 @@ fn joseph_with_gain<T: Real, const N: usize, const M: usize>(
 ///
 /// No adapter reads a factor of `C` here, so `C` is factored without square
 /// roots ([`Ldl`]): on the chain from one covariance to the next they
-/// would set the pace at small sizes. Equal to [`joseph_gain`] with a
-/// Cholesky factor to rounding.
+/// would set the pace at small sizes.
 #[allow(clippy::too_many_arguments)]
 #[inline]
 pub(crate) fn unadapted_update<T, const N: usize, const M: usize, R: Default, S, O>(
@@ -161,9 +87,9 @@ where
     let ldl = Ldl::new(&c).map_err(|e| not_pd(e.index))?;
     let nis = ldl.quadratic_form(&innovation);
     let negated_k = negated_gain_on_ldl(&ldl, cross);
-    // Written out, not through `joseph_and_correction`: through it the
-    // compiler inlined the Joseph update differently, and the KF step at 15
-    // states took 31,211 instructions instead of 29,673.
+    // Written out, not through a helper shared with `joseph_gain_on_ldl`:
+    // through one the compiler inlined the Joseph update differently, and
+    // the KF step at 15 states took 31,211 instructions instead of 29,673.
     let spare = cov.spare();
     joseph_with_gain(
         spare,
@@ -205,25 +131,44 @@ fn negated_gain_on_ldl<T: Real, const N: usize, const M: usize>(
     }
 }
 
-/// [`joseph_gain`] with the gain on the `L D Lᵀ` of `C` rather than on its
-/// Cholesky factor, with `R` through its factor: the arithmetic of the
-/// update without adapters, for an epoch in which the adapters left `R`,
-/// the innovation and the prior as they were. Not inlined: a second copy of
-/// the Joseph update in every adapted update would change how the compiler
-/// inlines the update without adapters (it took the KF step at 6 states
-/// from 6,596 to 7,008 instructions; benchmark notes, twenty-ninth round).
+/// The update after the adapters: the gain `K = B C⁻¹` on the `L D Lᵀ`
+/// of `C` and the Joseph update of `prior` into `covariance` (see
+/// [`joseph_with_gain`]) for the cross covariance `B`, the predicted
+/// measurement covariance, the noise used (with its factor when known) and
+/// `C`. Returns the state correction `K ν` for the innovation used: the
+/// gain itself stays here (moved out by value it was copied twice a step,
+/// `N M` elements each; benchmark notes, nineteenth round). In an epoch the
+/// adapters left as they were, this is the arithmetic of the update
+/// without them on the same factorisation, so its result bit for bit.
+///
+/// Not inlined: a second copy of the Joseph update in every adapted update
+/// would change how the compiler inlines the update without adapters (it
+/// took the KF step at 6 states from 6,596 to 7,008 instructions; benchmark
+/// notes, twenty-ninth round).
 #[inline(never)]
 pub(crate) fn joseph_gain_on_ldl<T: Real, const N: usize, const M: usize>(
     covariance: &mut SMatrix<T, N, N>,
     (prior, cross, predicted): (&SMatrix<T, N, N>, &SMatrix<T, N, M>, &SMatrix<T, M, M>),
-    (noise, noise_factor, c): (&SMatrix<T, M, M>, &SMatrix<T, M, M>, &SMatrix<T, M, M>),
+    (noise, noise_factor, c): (
+        &SMatrix<T, M, M>,
+        Option<&SMatrix<T, M, M>>,
+        &SMatrix<T, M, M>,
+    ),
     ldl: &Ldl<T, M>,
     innovation: &SVector<T, M>,
 ) -> Result<SVector<T, N>, FilterError> {
     let negated_k = negated_gain_on_ldl(ldl, cross);
-    let inputs = (prior, cross, predicted);
-    let noise = (noise, Some(noise_factor), c);
-    joseph_and_correction(covariance, inputs, noise, &negated_k, innovation)
+    joseph_with_gain(
+        covariance,
+        prior,
+        &negated_k,
+        cross,
+        predicted,
+        noise,
+        noise_factor,
+        c,
+    )?;
+    Ok(correction(&negated_k, innovation))
 }
 
 /// The outcome of an update without adapters: nothing adapted, so the
@@ -249,20 +194,22 @@ pub(crate) fn unadapted_report<T: Real, const M: usize, R: Default, O: UpdateOut
     O::assemble(report, c, c, noise)
 }
 
-/// The lower Cholesky factor of `c`: `known` when the caller has it (the
-/// adapters' view factors the same matrix when nothing faded it), else
-/// computed into `computed`. Borrowed either way, so a known factor is not
-/// copied.
+/// The `L D Lᵀ` of `C` the gain takes after the adapters and the NIS of
+/// the innovation used: the view's when nothing faded (the nominal one if
+/// the adapters kept `R`), else that of `c` (the form's `C` from the faded
+/// prior), factored into `fresh`.
 #[inline(always)]
-pub(crate) fn factor_of<'a, T: Real, const M: usize>(
+pub(crate) fn used_factorisation<'f, T: Real, const M: usize>(
+    step: &'f GainStep<'_, T, M>,
+    fade: T,
     c: &SMatrix<T, M, M>,
-    known: Option<&'a SMatrix<T, M, M>>,
-    computed: &'a mut Option<SMatrix<T, M, M>>,
-) -> Result<&'a SMatrix<T, M, M>, FilterError> {
-    match known {
-        Some(l) => Ok(l),
-        None => Ok(computed.insert(cholesky(c).map_err(|e| not_pd(e.index))?)),
+    fresh: &'f mut Option<Ldl<T, M>>,
+) -> Result<(&'f Ldl<T, M>, T), FilterError> {
+    if let Some(used) = step.used_factorisation(fade) {
+        return Ok(used);
     }
+    let ldl = fresh.insert(Ldl::new(c).map_err(|e| not_pd(e.index))?);
+    Ok((ldl, ldl.quadratic_form(step.innovation())))
 }
 
 /// The state of an update after the adapters' `before_gain`.
@@ -301,7 +248,7 @@ pub(crate) fn adapt<'s, 'a, T: Real, const M: usize, A: NoiseAdapter<T, M>>(
     adapter: &mut A,
     step: &'s mut GainStep<'a, T, M>,
 ) -> AdaptedStep<'s, 'a, T, M, A::Report> {
-    let nis = step.nominal_mahalanobis().unwrap_or_else(T::zero);
+    let nis = step.mahalanobis().unwrap_or_else(T::zero);
     let mut adapters = A::Report::default();
     adapter.before_gain(step, &mut adapters);
     AdaptedStep {
@@ -336,9 +283,12 @@ impl<T: Real, const M: usize, R> AdaptedStep<'_, '_, T, M, R> {
 
     /// Checks that the noise and innovation the adapters settled on
     /// (`step.noise()`, `step.innovation()`, read by reference) are finite.
+    /// The model's `R` the form has checked already.
     #[inline(always)]
     pub fn check_used(&self) -> Result<(), FilterError> {
-        ensure_finite(self.step.noise(), Quantity::MeasurementNoise)?;
+        if self.step.noise_changed() {
+            ensure_finite(self.step.noise(), Quantity::MeasurementNoise)?;
+        }
         ensure_finite(self.step.innovation(), Quantity::Measurement)
     }
 
@@ -364,12 +314,11 @@ impl<T: Real, const M: usize, R> AdaptedStep<'_, '_, T, M, R> {
     }
 
     /// `L⁻¹ ν` of the innovation used, for `C = L Lᵀ`: the view's own when
-    /// `l` is the view's factor (borrowed from it, see [`factor_of`]), so
-    /// the solve an adapter's test made is not made again.
+    /// the view holds `l` already (the square-root form's factor, `C` left
+    /// as it was), so the solve an adapter's test made is not made again.
     #[inline(always)]
     pub fn whitened(&self, l: &SMatrix<T, M, M>) -> SVector<T, M> {
-        if let Some(own) = self.step.innovation_factor()
-            && core::ptr::eq(own, l)
+        if self.step.formed_factor() == Some(l)
             && let Some(w) = self.step.whitened_innovation()
         {
             return w;

@@ -1,7 +1,9 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
-use super::outcome::{adapt, factor_of, joseph_gain, nominal_ldl, unadapted_update};
+use super::outcome::{
+    adapt, joseph_gain_on_ldl, nominal_ldl, unadapted_update, used_factorisation,
+};
 use super::pending::PendingCovariance;
 use super::{FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
@@ -25,6 +27,9 @@ use crate::{
 /// filter exactly), and applies `P⁺ = P⁻ − K P_xzᵀ − P_xz Kᵀ + K C Kᵀ`, the
 /// expanded Joseph form with `P_xz` in place of `P Hᵀ`, with `K R Kᵀ` taken
 /// through a factor of `R` ([`joseph_factored_noise`](crate::linalg::joseph_factored_noise)).
+/// The gain is taken on the `L D Lᵀ` of `C`, with adapters as they left it,
+/// so an adapter that changes nothing gives the filter without adapters bit
+/// for bit, as in the [`CovarianceForm`](super::CovarianceForm).
 ///
 /// ```
 /// use kestrel_core::form::UnscentedForm;
@@ -248,36 +253,24 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         let (r_used, nu_used) = (done.step.noise(), done.step.innovation());
         let c = pzz + r_used;
         let r_factor = done.noise_factor(Some(&r_factor));
-        // The view's factor of `C` is this `C`'s only when nothing faded
-        // (a fade recomputes `predicted` from the faded prior, which rounds
-        // differently from the view's update).
-        let known = (fade == T::one())
-            .then(|| done.step.innovation_factor())
-            .flatten();
-        let mut computed = None;
-        let factor = factor_of(&c, known, &mut computed)?;
-        let correction = joseph_gain(
-            self.cov.spare(),
-            prior,
-            &measured.cross,
-            pzz,
-            r_used,
-            r_factor,
-            &c,
-            factor,
-            nu_used,
-        )?;
+        // The view's factorisation of `C` is this `C`'s only when nothing
+        // faded (a fade recomputes `predicted` from the faded prior, which
+        // rounds differently from the view's update).
+        let mut fresh = None;
+        let (ldl, adapted_nis) = used_factorisation(done.step, fade, &c, &mut fresh)?;
+        let inputs = (prior, &measured.cross, pzz);
+        let noise = (r_used, r_factor, &c);
+        let correction = joseph_gain_on_ldl(self.cov.spare(), inputs, noise, ldl, nu_used)?;
         let x_new = space.add(x, &correction);
         ensure_finite(&x_new, Quantity::UpdatedState)?;
 
         *x = x_new;
         let total_fade = self.cov.total_fade(fade);
         self.cov.commit_spare();
-        let white = done.whitened(factor);
         adapter.after_update(
-            &Posterior::with_whitened(nu_used, &white, pzz, r_used, factor),
+            &Posterior::on_ldl(nu_used, pzz, r_used, ldl),
             &mut done.adapters,
         );
-        Ok(done.accepted(nu, &c, white.norm_squared(), total_fade))
+        Ok(done.accepted(nu, &c, adapted_nis, total_fade))
     }
 }

@@ -28,7 +28,7 @@ pub use triangularize::add_columns;
 
 pub(crate) use cholesky::cholesky_semidefinite_in_place;
 pub(crate) use ldl::Ldl;
-pub(crate) use product::{add_products, mul_lower};
+pub(crate) use product::{add_products, add_scaled, mul_lower};
 pub(crate) use rank_one::{
     downdate_columns_in_place, downdate_in_place, update_in_place, weighted_rank_one_in_place,
 };
