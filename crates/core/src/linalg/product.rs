@@ -23,7 +23,7 @@ use crate::Real;
 const VECTOR_BYTES: usize = if cfg!(target_feature = "avx") { 32 } else { 16 };
 
 /// Elements of `T` in one vector register.
-const fn lanes<T>() -> usize {
+pub(super) const fn lanes<T>() -> usize {
     VECTOR_BYTES / core::mem::size_of::<T>()
 }
 
