@@ -10,12 +10,12 @@
 
 use crate::common;
 
-use common::{dispatch, SIZES};
+use common::{dispatch, Make, SIZES};
 use kestrel::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter};
-use kestrel::form::{Form, PredictForm, UnscentedForm, UpdateForm};
+use kestrel::form::{Form, PredictForm, UpdateForm};
 use kestrel::models::{LinearMeasurement, LinearProcess};
 use kestrel::nalgebra::{SMatrix, SVector};
-use kestrel::{Filter, Ukf, UpdateDetail};
+use kestrel::{Filter, UpdateDetail};
 
 /// Relative agreement of the two rounds' posterior views (the factor of
 /// `C` as `L √D` of the form's `L D Lᵀ` or by a Cholesky factorisation;
@@ -131,16 +131,6 @@ fn same<const M: usize>(a: &UpdateDetail<f64, M>, b: &UpdateDetail<f64, M>, what
     assert_eq!(a.noise, b.noise, "{what}");
 }
 
-/// A filter of the form under test, built from `x0` and `p0`.
-type Make<F, const N: usize> = fn(SVector<f64, N>, SMatrix<f64, N, N>) -> Filter<f64, N, F>;
-
-fn ukf<const N: usize>(
-    x0: SVector<f64, N>,
-    p0: SMatrix<f64, N, N>,
-) -> Filter<f64, N, UnscentedForm<f64, N>> {
-    Ukf::new(x0, p0).expect("finite")
-}
-
 fn run<F, const N: usize, const M: usize>(make: Make<F, N>, seed: u64)
 where
     F: Form<f64, N>
@@ -226,7 +216,7 @@ fn covariance<const N: usize, const M: usize>(seed: u64) {
 }
 
 fn unscented<const N: usize, const M: usize>(seed: u64) {
-    run::<_, N, M>(ukf, seed);
+    run::<_, N, M>(common::ukf, seed);
 }
 
 #[test]

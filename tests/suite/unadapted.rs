@@ -16,12 +16,12 @@
 
 use crate::common;
 
-use common::{dispatch, SIZES};
+use common::{dispatch, srukf, ukf, Make, SIZES};
 use kestrel::adapter::{GainStep, NoiseAdapter, PriorAdapter};
-use kestrel::form::{Form, PredictForm, SquareRootForm, UnscentedForm, UpdateForm};
+use kestrel::form::{Form, PredictForm, UpdateForm};
 use kestrel::models::{LinearMeasurement, LinearProcess};
-use kestrel::nalgebra::{SMatrix, SVector};
-use kestrel::{Filter, SrUkf, Ukf, UpdateDetail};
+use kestrel::nalgebra::SMatrix;
+use kestrel::UpdateDetail;
 
 /// Relative agreement of two solves of the same system by different
 /// factorisations (observed: below `1e-14` on these models, a tenfold margin).
@@ -55,25 +55,6 @@ impl<const M: usize> NoiseAdapter<f64, M> for Restated {
         let r = *step.noise();
         step.set_noise(r);
     }
-}
-
-/// A filter of the form under test, built from `x0` and `p0` (the
-/// covariance form with sequential updates off, so a dense `R` takes the
-/// batch update either way).
-type Make<F, const N: usize> = fn(SVector<f64, N>, SMatrix<f64, N, N>) -> Filter<f64, N, F>;
-
-fn ukf<const N: usize>(
-    x0: SVector<f64, N>,
-    p0: SMatrix<f64, N, N>,
-) -> Filter<f64, N, UnscentedForm<f64, N>> {
-    Ukf::new(x0, p0).expect("finite")
-}
-
-fn srukf<const N: usize>(
-    x0: SVector<f64, N>,
-    p0: SMatrix<f64, N, N>,
-) -> Filter<f64, N, SquareRootForm<f64, N>> {
-    SrUkf::new(x0, p0).expect("finite")
 }
 
 fn linear<F, const N: usize, const M: usize>(make: Make<F, N>, seed: u64)

@@ -290,6 +290,30 @@ pub fn constant_velocity<T: Real>(
     )
 }
 
+/// A filter of some form, built from `x0` and `p0` (as [`batch_ekf`],
+/// [`ukf`] and [`srukf`] build them), for tests run on every form.
+#[allow(dead_code)]
+pub type Make<F, const N: usize> =
+    fn(SVector<f64, N>, SMatrix<f64, N, N>) -> kestrel::Filter<f64, N, F>;
+
+/// A UKF on `x0` and `p0`.
+#[allow(dead_code)]
+pub fn ukf<const N: usize>(
+    x0: SVector<f64, N>,
+    p0: SMatrix<f64, N, N>,
+) -> kestrel::Filter<f64, N, kestrel::form::UnscentedForm<f64, N>> {
+    kestrel::Ukf::new(x0, p0).expect("finite")
+}
+
+/// An SR-UKF on `x0` and `p0`.
+#[allow(dead_code)]
+pub fn srukf<const N: usize>(
+    x0: SVector<f64, N>,
+    p0: SMatrix<f64, N, N>,
+) -> kestrel::Filter<f64, N, kestrel::form::SquareRootForm<f64, N>> {
+    kestrel::SrUkf::new(x0, p0).expect("finite")
+}
+
 /// An EKF on `x0` and `p0` with sequential updates off, so that a dense or
 /// diagonal `R` takes the batch update.
 #[allow(dead_code)]
