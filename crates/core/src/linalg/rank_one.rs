@@ -135,6 +135,9 @@ pub(crate) fn downdate_in_place<T: Real, const N: usize>(
     s: &mut SMatrix<T, N, N>,
     v: &mut SVector<T, N>,
 ) -> Result<(), usize> {
+    if N == 0 {
+        return Ok(());
+    }
     let s = s.as_mut_slice().as_chunks_mut::<N>().0;
     let v = &mut v.data.0[0];
     for (k, col) in s.iter_mut().enumerate() {
@@ -161,10 +164,12 @@ pub(crate) fn downdate_columns_in_place<T: Real, const N: usize, const M: usize>
     s: &mut SMatrix<T, N, N>,
     u: &mut SMatrix<T, N, M>,
 ) -> Result<(), ()> {
+    if N == 0 {
+        return Ok(());
+    }
     let s = s.as_mut_slice().as_chunks_mut::<N>().0;
     let u = u.as_mut_slice().as_chunks_mut::<N>().0;
-    let diagonals = if N == 0 { 0 } else { N + M - 1 };
-    for d in 0..diagonals {
+    for d in 0..N + M - 1 {
         // Columns j ≤ d with pivot k = d − j inside the factor (k < N); a
         // constant trip count with the bounds as conditions, so it unrolls.
         for (j, column) in u.iter_mut().enumerate() {
