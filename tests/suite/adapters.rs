@@ -188,6 +188,55 @@ fn a_non_finite_noise_factor_is_refused() {
     each_form!(non_finite_noise_factor);
 }
 
+/// Fades by `fade` (1: none), then puts `R = −100 I` in place: `C` is then
+/// indefinite.
+#[derive(Clone, Copy, Debug)]
+struct IndefiniteNoise {
+    fade: f64,
+}
+
+impl PriorAdapter<f64> for IndefiniteNoise {}
+
+impl NoiseAdapter<f64, 2> for IndefiniteNoise {
+    type Report = ();
+    fn before_gain(&mut self, step: &mut GainStep<f64, 2>, _: &mut ()) {
+        step.fade(self.fade);
+        step.set_noise(Matrix2::identity() * -100.0);
+    }
+}
+
+/// An `R` that leaves `C` indefinite is refused with the pivot the
+/// factorisation of `C` failed at (the view's own `L D Lᵀ` when nothing
+/// faded, one of `C` from the faded prior otherwise), or, in the
+/// square-root form, as an `R` without a factor; the filter is unchanged.
+fn indefinite_noise<F: LinForm>(name: &str, f: Filter<f64, 2, F>) {
+    use kestrel::{FilterError, Quantity};
+    for fade in [1.0, 1.5] {
+        let mut f = f.clone().with_adapter(IndefiniteNoise { fade });
+        f.predict(&process(), 1.0).unwrap();
+        let (x, p) = (*f.state(), f.covariance());
+        let err = f
+            .update(&two_sensors(), &Vector2::new(6.0, 11.0))
+            .unwrap_err();
+        let what = if name == "sr-ukf" || name == "sr-ukf rank-one" {
+            Quantity::MeasurementNoise
+        } else {
+            Quantity::InnovationCovariance
+        };
+        assert_eq!(
+            err,
+            FilterError::NotPositiveDefinite { what, index: 0 },
+            "{name}, fade {fade}"
+        );
+        assert_eq!((*f.state(), f.covariance()), (x, p), "{name}, fade {fade}");
+    }
+}
+
+#[test]
+fn a_noise_that_leaves_c_indefinite_is_refused() {
+    each_form!(indefinite_noise);
+}
+
 // (c) and (g) -----------------------------------------------------------------
 
 /// Where the fade comes from.
