@@ -274,11 +274,17 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         // posterior goes into the spare buffer (no copy of the view).
         let (pending, spare) = self.cov.view_and_spare();
         let parts = || pending.split(Some(&h), &hph);
-        let ldl = nominal_ldl(&hph, &r).or_else(|e| diagnose(|| jacobian().and(Err(e))))?;
+        // Borrowed from the result, not moved out of it (a copy of the
+        // factorisation a step).
+        let nominal = nominal_ldl(&hph, &r);
+        let ldl = match &nominal {
+            Ok(ldl) => ldl,
+            Err(e) => return Err(diagnose(|| jacobian().err().unwrap_or(*e))),
+        };
         let mut step = if A::NEEDS_SPLIT {
-            GainStep::with_lazy_split(nu, hph, &parts, r, &ldl)
+            GainStep::with_lazy_split(nu, hph, &parts, r, ldl)
         } else {
-            GainStep::with_ldl(nu, hph, None, r, &ldl)
+            GainStep::with_ldl(nu, hph, None, r, ldl)
         };
         let mut done = adapt(adapter, &mut step);
         let fade = done.step.fade_factor();

@@ -228,8 +228,11 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             let h = effective_jacobian(&s, &measured.cross);
             self.cov.split(h.as_ref(), &pzz)
         });
-        let ldl = nominal_ldl(&pzz, &r)?;
-        let mut step = GainStep::with_ldl(nu, pzz, split, r, &ldl);
+        // Borrowed from the result, not moved out of it (a copy of the
+        // factorisation a step).
+        let nominal = nominal_ldl(&pzz, &r);
+        let ldl = nominal.as_ref().map_err(|e| *e)?;
+        let mut step = GainStep::with_ldl(nu, pzz, split, r, ldl);
         let mut done = adapt(adapter, &mut step);
         let fade = done.step.fade_factor();
         if done.step.is_rejected() {
