@@ -104,18 +104,15 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
         }
     }
 
-    /// `B ← L⁻¹ B` for the lower Cholesky factor `L` of `C` (on the form's
+    /// `v ← L⁻¹ v` for the lower Cholesky factor `L` of `C` (on the form's
     /// `L₁ D L₁ᵀ`, `L⁻¹ = √D⁻¹ L₁⁻¹`).
-    fn whiten<const K: usize>(&self, b: &mut SMatrix<T, M, K>) {
+    fn whiten(&self, v: &mut SVector<T, M>) {
         match &self.factor {
-            Factor::Cholesky(l) => solve_lower(l, b),
+            Factor::Cholesky(l) => solve_lower(l, v),
             Factor::Ldl(ldl) => {
-                ldl.solve_unit_lower_in_place(b);
-                let roots = ldl.inverse_pivots().map(|inv_d| inv_d.sqrt());
-                for mut column in b.column_iter_mut() {
-                    for (v, root) in column.iter_mut().zip(&roots) {
-                        *v *= *root;
-                    }
+                ldl.solve_unit_lower_in_place(v);
+                for (x, inv_d) in v.iter_mut().zip(ldl.inverse_pivots()) {
+                    *x *= inv_d.sqrt();
                 }
             }
         }

@@ -150,23 +150,28 @@ impl<T: Real, const M: usize> Ldl<T, M> {
     /// `B ← L⁻¹ B` for the unit lower triangular `L` (no divisions).
     #[inline]
     pub fn solve_unit_lower_in_place<const K: usize>(&self, b: &mut SMatrix<T, M, K>) {
-        let ls = self.l.as_slice();
         for c in 0..K {
-            let col = &mut b.as_mut_slice()[c * M..c * M + M];
-            for k in 0..M {
-                let xk = col[k];
-                if M < UNROLL_FROM {
-                    // Constant trip counts, the bound as a condition: the
-                    // compiler unrolls the whole column (the same arithmetic).
-                    for i in 0..M {
-                        if i > k {
-                            col[i] -= ls[k * M + i] * xk;
-                        }
+            self.forward(&mut b.as_mut_slice()[c * M..c * M + M], M < UNROLL_FROM);
+        }
+    }
+
+    /// `x ← L⁻¹ x` for one column `x` of `M` elements, unrolled (constant
+    /// trip counts with the bounds as conditions: the same arithmetic) if
+    /// `unroll`.
+    #[inline(always)]
+    fn forward(&self, col: &mut [T], unroll: bool) {
+        let ls = self.l.as_slice();
+        for k in 0..M {
+            let xk = col[k];
+            if unroll {
+                for i in 0..M {
+                    if i > k {
+                        col[i] -= ls[k * M + i] * xk;
                     }
-                } else {
-                    for (bi, li) in col[k + 1..].iter_mut().zip(&ls[k * M + k + 1..k * M + M]) {
-                        *bi -= *li * xk;
-                    }
+                }
+            } else {
+                for (bi, li) in col[k + 1..].iter_mut().zip(&ls[k * M + k + 1..k * M + M]) {
+                    *bi -= *li * xk;
                 }
             }
         }
@@ -184,14 +189,9 @@ impl<T: Real, const M: usize> Ldl<T, M> {
         let ls = self.l.as_slice();
         for c in 0..K {
             let col = &mut b.as_mut_slice()[c * M..c * M + M];
-            // The loops of `solve_unit_lower_in_place` without its unrolling:
-            // unrolled, the six-state KF step took 188 more instructions.
-            for k in 0..M {
-                let xk = col[k];
-                for (bi, li) in col[k + 1..].iter_mut().zip(&ls[k * M + k + 1..k * M + M]) {
-                    *bi -= *li * xk;
-                }
-            }
+            // Not unrolled: unrolled, the six-state KF step took 188 more
+            // instructions.
+            self.forward(col, false);
             for (v, inv) in col.iter_mut().zip(&self.inv_d) {
                 *v *= *inv;
             }
