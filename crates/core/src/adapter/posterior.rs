@@ -224,20 +224,22 @@ impl<'a, T: Real, const M: usize> Posterior<'a, T, M> {
     /// `H_p − GᵀG` and `Gᵀ`, for `G = L⁻¹ H_p`; on the form's `L₁ D L₁ᵀ`,
     /// `H_p − Gᵀ D⁻¹ G` and `Gᵀ` for `G = L₁⁻¹ H_p`.
     fn covariance_and_gt(&self) -> (SMatrix<T, M, M>, SMatrix<T, M, M>) {
-        let mut g = *self.predicted;
-        let weights = match self.factor {
+        let (gt, weights) = match self.factor {
             Factor::Cholesky(l) => {
+                let mut g = *self.predicted;
                 solve_lower(l, &mut g);
-                [T::one(); M]
+                (g.transpose(), [T::one(); M])
             }
+            // `Gᵀ = H_p L₁⁻ᵀ` for the symmetric `H_p`, solved as it is
+            // used: no transpose.
             Factor::Ldl(ldl) => {
-                ldl.solve_unit_lower_in_place(&mut g);
-                *ldl.inverse_pivots()
+                let mut gt = *self.predicted;
+                ldl.solve_unit_lower_transpose_right_in_place(&mut gt);
+                (gt, *ldl.inverse_pivots())
             }
         };
         // Gᵀ W G as Σₖ wₖ (row k of G)ᵀ (row k of G), a column at a time,
         // then mirrored: exactly symmetric.
-        let gt = g.transpose();
         let mut gram = SMatrix::zeros();
         for j in 0..M {
             let mut acc = [T::zero(); M];

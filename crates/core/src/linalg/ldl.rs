@@ -124,15 +124,9 @@ impl<T: Real, const M: usize> Ldl<T, M> {
     /// `a − c f` exactly).
     #[inline]
     pub fn solve_right_in_place<const R: usize>(&self, x: &mut SMatrix<T, R, M>) {
-        let cols = &mut x.data.0;
         // Y Lᵀ = X, forwards: Yⱼ = Xⱼ − Σₖ₍ₖ<ⱼ₎ Yₖ Lⱼₖ.
-        for j in 0..M {
-            let mut acc = cols[j];
-            for (k, yk) in cols[..j].iter().enumerate() {
-                add_scaled(&mut acc, yk, -self.l[(j, k)]);
-            }
-            cols[j] = acc;
-        }
+        self.solve_unit_lower_transpose_right_in_place(x);
+        let cols = &mut x.data.0;
         // W L = Z = Y D⁻¹, backwards: Wⱼ = Zⱼ − Σₖ₍ₖ>ⱼ₎ Wₖ Lₖⱼ (the Yₖ
         // above stay unscaled until their own column is reached).
         for j in (0..M).rev() {
@@ -142,6 +136,27 @@ impl<T: Real, const M: usize> Ldl<T, M> {
             }
             for (k, wk) in cols.iter().enumerate().skip(j + 1) {
                 add_scaled(&mut acc, wk, -self.l[(k, j)]);
+            }
+            cols[j] = acc;
+        }
+    }
+
+    /// `X ← X L⁻ᵀ` for the unit lower triangular `L` (no divisions): `Y`
+    /// with `Y Lᵀ = X`, each column one scaled subtraction of whole earlier
+    /// columns. For a symmetric `X` this is `(L⁻¹ X)ᵀ` bit for bit (the
+    /// same products as [`solve_unit_lower_in_place`](Self::solve_unit_lower_in_place),
+    /// subtracted in the same order) without the transpose, and down the
+    /// columns, where that solve works along each one.
+    #[inline(always)]
+    pub fn solve_unit_lower_transpose_right_in_place<const R: usize>(
+        &self,
+        x: &mut SMatrix<T, R, M>,
+    ) {
+        let cols = &mut x.data.0;
+        for j in 0..M {
+            let mut acc = cols[j];
+            for (k, yk) in cols[..j].iter().enumerate() {
+                add_scaled(&mut acc, yk, -self.l[(j, k)]);
             }
             cols[j] = acc;
         }
@@ -413,6 +428,49 @@ mod tests {
             assert_relative_eq!(unit * d * unit.transpose(), c, epsilon = 1e-12);
         }
         check::<4>();
+        check::<9>();
+        check::<12>();
+    }
+
+    /// `X L⁻ᵀ` from the right: `Y Lᵀ = X` (by hand at three components,
+    /// to rounding at 1–12), and for a symmetric `X` the transpose of the
+    /// left solve on `X` bit for bit, as the posterior view takes it.
+    #[test]
+    fn the_unit_lower_transpose_solve_from_the_right() {
+        // L as above; X = [[1, 2.5, 3]] (one row): Y Lᵀ = X is L y = x,
+        // y = (1, 2, 0).
+        let l = Matrix3::new(1.0, 0.0, 0.0, 0.5, 1.0, 0.0, -1.0, 2.0, 1.0);
+        let d = Matrix3::from_diagonal(&Vector3::new(4.0, 2.0, 3.0));
+        let f = Ldl::new(&(l * d * l.transpose())).unwrap();
+        let mut x = nalgebra::RowVector3::new(1.0, 2.5, 3.0);
+        f.solve_unit_lower_transpose_right_in_place(&mut x);
+        assert_relative_eq!(x, nalgebra::RowVector3::new(1.0, 2.0, 0.0), epsilon = 1e-15);
+        fn check<const M: usize>() {
+            let a = SMatrix::<f64, M, M>::from_fn(|i, j| ((i * 3 + j * 5) as f64 * 0.41).sin());
+            let c = a * a.transpose() + SMatrix::identity() * 0.3;
+            let f = Ldl::new(&c).unwrap();
+            let unit = SMatrix::<f64, M, M>::from_fn(|i, j| match i.cmp(&j) {
+                core::cmp::Ordering::Greater => f.l[(i, j)],
+                core::cmp::Ordering::Equal => 1.0,
+                core::cmp::Ordering::Less => 0.0,
+            });
+            let b = SMatrix::<f64, 3, M>::from_fn(|i, j| ((i + 4 * j) as f64).cos());
+            let mut y = b;
+            f.solve_unit_lower_transpose_right_in_place(&mut y);
+            assert_relative_eq!(y * unit.transpose(), b, epsilon = 1e-12);
+            // A symmetric X: the left solve's transpose, bit for bit.
+            let s = SMatrix::<f64, M, M>::from_fn(|i, j| ((i * j + i + j) as f64 * 0.7).sin());
+            let s = s + s.transpose();
+            let mut left = s;
+            f.solve_unit_lower_in_place(&mut left);
+            let mut right = s;
+            f.solve_unit_lower_transpose_right_in_place(&mut right);
+            assert_eq!(right, left.transpose());
+        }
+        check::<1>();
+        check::<2>();
+        check::<4>();
+        check::<6>();
         check::<9>();
         check::<12>();
     }
