@@ -44,6 +44,21 @@ impl<T: Real, const N: usize> CheckedNoise<T, N> {
         self.check_and_keep(a, what)
     }
 
+    /// [`check`](Self::check) for a matrix of the storage's own size (a
+    /// process noise), the factor borrowed from the cache rather than
+    /// copied out of it.
+    #[inline(always)]
+    pub fn check_full(
+        &mut self,
+        a: &SMatrix<T, N, N>,
+        what: Quantity,
+    ) -> Result<&SMatrix<T, N, N>, FilterError> {
+        if !(self.size == N && same_values(self.noise.as_slice(), a.as_slice())) {
+            self.check_and_keep(a, what)?;
+        }
+        Ok(&self.factor)
+    }
+
     /// The full check of [`check`](Self::check), out of line, keeping the
     /// result.
     #[inline(never)]
@@ -110,5 +125,34 @@ mod tests {
             c.check(&big, Quantity::MeasurementNoise).unwrap(),
             Matrix3::from_diagonal_element(3.0)
         );
+    }
+
+    #[test]
+    fn a_full_size_noise_lends_its_factor_and_is_checked_again_when_changed() {
+        let mut c = CheckedNoise::<f64, 2>::new();
+        let q = Matrix2::new(4.0, 2.0, 2.0, 5.0);
+        let l = Matrix2::new(2.0, 0.0, 1.0, 2.0);
+        assert_eq!(c.check_full(&q, Quantity::ProcessNoise).unwrap(), &l);
+        assert_eq!(c.check_full(&q, Quantity::ProcessNoise).unwrap(), &l);
+        // A smaller noise checked in between does not stand for the full one.
+        let one = nalgebra::Matrix1::new(9.0);
+        assert_eq!(c.check(&one, Quantity::ProcessNoise).unwrap()[0], 3.0);
+        assert_eq!(c.check_full(&q, Quantity::ProcessNoise).unwrap(), &l);
+        // A change is checked again and refused; the one before still holds.
+        let bad = Matrix2::new(1.0, 2.0, 2.0, 1.0);
+        assert_eq!(
+            c.check_full(&bad, Quantity::ProcessNoise).unwrap_err(),
+            FilterError::NotPositiveDefinite {
+                what: Quantity::ProcessNoise,
+                index: 1
+            }
+        );
+        let mut nan = q;
+        nan[(1, 1)] = f64::NAN;
+        assert!(matches!(
+            c.check_full(&nan, Quantity::ProcessNoise),
+            Err(FilterError::NonFinite { .. })
+        ));
+        assert_eq!(c.check_full(&q, Quantity::ProcessNoise).unwrap(), &l);
     }
 }

@@ -2,6 +2,7 @@
 
 use nalgebra::SMatrix;
 
+use super::double_buffer::DoubleBuffer;
 use super::FadeStates;
 use crate::linalg::sandwich;
 use crate::Real;
@@ -18,10 +19,8 @@ use crate::Real;
 #[derive(Clone)]
 pub(crate) struct PendingCovariance<T: Real, const N: usize> {
     /// The posterior, or the propagated part while a prediction is pending
-    /// (`buffers[current]`), and the spare buffer.
-    buffers: [SMatrix<T, N, N>; 2],
-    /// 0 or 1.
-    current: usize,
+    /// (the current buffer), and the spare buffer.
+    buffers: DoubleBuffer<T, N>,
     /// The pending process noise.
     q: SMatrix<T, N, N>,
     /// The pending fade of `p` from the after-predict hook.
@@ -47,8 +46,7 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
     /// A posterior covariance `p` (taken as symmetric).
     pub fn new(p: SMatrix<T, N, N>) -> Self {
         Self {
-            buffers: [p, SMatrix::zeros()],
-            current: 0,
+            buffers: DoubleBuffer::new(p),
             q: SMatrix::zeros(),
             fade: T::one(),
             pending: false,
@@ -58,25 +56,18 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
 
     /// The current buffer.
     fn p(&self) -> &SMatrix<T, N, N> {
-        // `& 1`: the index is provably in bounds, so no check.
-        &self.buffers[self.current & 1]
+        self.buffers.current()
     }
 
     /// The current buffer (read) and the spare one (to write), for a
     /// result computed from the current covariance.
     pub fn current_and_spare(&mut self) -> (&SMatrix<T, N, N>, &mut SMatrix<T, N, N>) {
-        let [a, b] = &mut self.buffers;
-        if self.current & 1 == 0 {
-            (a, b)
-        } else {
-            (b, a)
-        }
+        self.buffers.current_and_spare()
     }
 
     /// The spare buffer, to write the next covariance into.
     pub fn spare(&mut self) -> &mut SMatrix<T, N, N> {
-        // `& 1`: provably in bounds, so no check.
-        &mut self.buffers[(self.current ^ 1) & 1]
+        self.buffers.spare()
     }
 
     /// The process noise of the last prediction (zero before the first):
@@ -124,27 +115,16 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
     /// Makes the spare buffer, which holds the posterior, current; nothing
     /// is pending.
     pub fn commit_spare(&mut self) {
-        self.swap_buffers();
+        self.buffers.swap();
         self.fade = T::one();
         self.pending = false;
-    }
-
-    /// Makes the spare buffer current.
-    ///
-    /// The index is written whole. `current ^= 1` compiles to a one-byte
-    /// store, which the next step's eight-byte load of the index cannot
-    /// take from the store buffer: that load, and every access to the
-    /// covariance through it, would wait until the store reaches the cache
-    /// (benchmark notes, thirteenth round; four instructions more a step).
-    fn swap_buffers(&mut self) {
-        self.current = 1 - self.current;
     }
 
     /// Records a prediction whose propagated part is in the spare buffer,
     /// with process noise `q` (`None`: the same as the last prediction's)
     /// and fade `fade`.
     pub fn predicted_spare(&mut self, q: Option<&SMatrix<T, N, N>>, fade: T) {
-        self.swap_buffers();
+        self.buffers.swap();
         if let Some(q) = q {
             self.q = *q;
         }
@@ -179,12 +159,7 @@ impl<T: Real, const N: usize> PendingCovariance<T, N> {
     /// can keep a lazily computed split (which reads the view) alive while
     /// it writes the posterior into the spare buffer.
     pub fn view_and_spare(&mut self) -> (PendingView<'_, T, N>, &mut SMatrix<T, N, N>) {
-        let [a, b] = &mut self.buffers;
-        let (p, spare) = if self.current & 1 == 0 {
-            (&*a, b)
-        } else {
-            (&*b, a)
-        };
+        let (p, spare) = self.buffers.current_and_spare();
         let view = PendingView {
             p,
             q: &self.q,

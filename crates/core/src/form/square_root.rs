@@ -2,15 +2,16 @@ use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
 use super::outcome::{adapt, not_pd, unadapted_report};
+use super::pending_factor::PendingFactor;
 use super::unscented::effective_jacobian;
 use super::{FadeStates, Form, PredictForm, UpdateForm};
 use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
 use crate::contract::check_covariance;
 use crate::error::ensure_finite;
 use crate::linalg::{
-    add_columns, add_columns_by_rows, cholesky_semidefinite, downdate_columns_in_place,
-    downdate_in_place, lower_times_transpose, mirror_lower, mul_lower, mul_vector, solve_lower,
-    solve_right_cholesky, update_in_place, weighted_rank_one_in_place,
+    add_columns_by_rows, cholesky_semidefinite, downdate_columns_in_place, downdate_in_place,
+    lower_times_transpose, mirror_lower, mul_lower, mul_vector, solve_lower, solve_right_cholesky,
+    update_in_place, weighted_rank_one_in_place,
 };
 use crate::real::finite;
 use crate::sigma::{self, MeasuredSigma, MerweParams, Pairs, SigmaWeights};
@@ -58,19 +59,15 @@ pub enum TimeUpdate {
 /// Sources: see the [references](crate::references).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SquareRootForm<T: Real, const N: usize> {
-    /// Factor of the posterior, or of the propagated part while pending.
-    s: SMatrix<T, N, N>,
-    /// Factor of the pending process noise.
-    sq: SMatrix<T, N, N>,
-    fade: T,
-    /// The after-predict fade already folded into `s`, for the report.
+    /// The factor, with any pending process noise; a step writes the next
+    /// one into its spare buffer and makes it current once checked.
+    factor: PendingFactor<T, N>,
+    /// The after-predict fade already folded into the factor, for the
+    /// report.
     predict_fade: T,
-    pending: bool,
     params: MerweParams<T>,
     weights: SigmaWeights<T>,
     time_update: TimeUpdate,
-    /// The states a fade scales.
-    states: FadeStates<N>,
     /// The last `Q` and its factor.
     process_noise: CheckedNoise<T, N>,
     /// The last `R` and its factor.
@@ -87,15 +84,11 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
             valid: "at least 1 (a state of dimension 0 has no sigma points)",
         })?;
         let mut form = Self {
-            s: SMatrix::zeros(),
-            sq: SMatrix::zeros(),
-            fade: T::one(),
+            factor: PendingFactor::new(SMatrix::zeros()),
             predict_fade: T::one(),
-            pending: false,
             params,
             weights,
             time_update: TimeUpdate::default(),
-            states: FadeStates::all(),
             process_noise: CheckedNoise::new(),
             measurement_noise: CheckedNoise::new(),
         };
@@ -108,7 +101,7 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
     pub fn from_factor(s: &SMatrix<T, N, N>) -> Result<Self, FilterError> {
         ensure_finite(s, Quantity::StateCovariance)?;
         let mut form = Self::new(&SMatrix::zeros())?;
-        form.s = s.lower_triangle();
+        form.commit(s.lower_triangle());
         Ok(form)
     }
 
@@ -143,59 +136,31 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
     /// assert!(!form.fade_states().is_all());
     /// ```
     pub fn set_fade_states(&mut self, states: FadeStates<N>) {
-        self.states = states;
+        self.factor.set_fade_states(states);
     }
 
     /// The states a fade scales.
     pub fn fade_states(&self) -> FadeStates<N> {
-        self.states
+        self.factor.fade_states()
     }
 
     /// The lower Cholesky factor `S` of the covariance (with any pending
     /// process noise merged in).
     pub fn factor(&self) -> SMatrix<T, N, N> {
-        self.prior_factor(T::one())
+        self.factor.view().merged(T::one())
     }
 
-    /// Factor of `D S Sᵀ D + S_Q S_Qᵀ` (`D = √λ_total` on the faded
-    /// states) for an extra fade `extra`.
-    fn prior_factor(&self, extra: T) -> SMatrix<T, N, N> {
-        if !self.pending {
-            return if extra == T::one() {
-                self.s
-            } else {
-                self.states.scale_rows(&self.s, extra)
-            };
-        }
-        let mut s = self.states.scale_rows(&self.s, self.fade * extra);
-        let mut cols: [SVector<T, N>; N] = core::array::from_fn(|i| self.sq.column(i).into_owned());
-        add_columns(&mut s, &mut cols);
-        s
-    }
-
-    /// The factor of the covariance: `S` itself, borrowed (no copy), unless
-    /// a prediction is pending; then the merged factor, kept in `merged`.
-    fn current_factor<'a>(
-        &'a self,
-        merged: &'a mut Option<SMatrix<T, N, N>>,
-    ) -> &'a SMatrix<T, N, N> {
-        if self.pending {
-            merged.insert(self.prior_factor(T::one()))
-        } else {
-            &self.s
-        }
-    }
-
+    /// Makes `s` the factor of the posterior.
     fn commit(&mut self, s: SMatrix<T, N, N>) {
-        self.s = s;
-        // `sq` is only read while a prediction is pending, and is zero
-        // otherwise: cleared only if it was set (not `N × N` stores a step).
-        if self.pending {
-            self.sq = SMatrix::zeros();
-        }
-        self.fade = T::one();
+        self.factor.commit(s);
         self.predict_fade = T::one();
-        self.pending = false;
+    }
+
+    /// Makes the spare buffer, which holds the factor of the posterior,
+    /// current.
+    fn commit_spare(&mut self) {
+        self.factor.commit_spare();
+        self.predict_fade = T::one();
     }
 
     /// Folds `Σ w dᵢ dᵢᵀ` over the pairs into `start`, by the configured method.
@@ -237,20 +202,18 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
     }
 
     /// `S_z` with `S_z S_zᵀ = Σ Wc dzⱼ dzⱼᵀ + R`, from `sr = chol(R)`.
+    /// (An associated function, so that a step can hold the spare buffer
+    /// while it calls it.)
     fn innovation_factor<const M: usize>(
-        &self,
+        method: TimeUpdate,
+        weights: &SigmaWeights<T>,
         measured: &MeasuredSigma<T, N, M>,
         sr: &SMatrix<T, M, M>,
     ) -> Result<SMatrix<T, M, M>, FilterError> {
         // R may be singular (a perfect measurement) as long as C is not.
         let mut sz = *sr;
-        Self::fold(
-            self.time_update,
-            &mut sz,
-            &measured.pairs,
-            self.weights.other.sqrt(),
-        );
-        weighted_rank_one_in_place(&mut sz, &measured.center, self.weights.cov0)
+        Self::fold(method, &mut sz, &measured.pairs, weights.other.sqrt());
+        weighted_rank_one_in_place(&mut sz, &measured.center, weights.cov0)
             .map_err(|e| not_pd(e.index))?;
         // The same singularity test as `cholesky`: a pivot at or below
         // `M·ε` of its column's scale means C is singular to working precision.
@@ -301,50 +264,55 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Sq
         adapter: &mut A,
         space: &S,
     ) -> Result<(), FilterError> {
-        let mut q = model.noise(x, dt);
-        let sq = self.process_noise.check(&q, Quantity::ProcessNoise)?;
-        mirror_lower(&mut q);
+        let q = model.noise(x, dt);
+        // Borrowed from the check's cache: the time update starts from a
+        // copy in the spare buffer, where the propagated factor is written
+        // and checked before it is made current.
+        let sq = self.process_noise.check_full(&q, Quantity::ProcessNoise)?;
+        let states = self.factor.fade_states();
+        let (view, factor) = self.factor.view_and_spare();
         let mut merged = None;
-        let s = self.current_factor(&mut merged);
+        let s = view.current(&mut merged);
         let mut propagated = sigma::propagate(x, s, &self.weights, model, dt, space)?;
 
         let mut step = PriorStep::new(dt);
         adapter.after_predict(&mut step);
         let lambda = step.fade_factor();
-        let mut factor = if A::NEEDS_SPLIT { SMatrix::zeros() } else { sq };
+        if A::NEEDS_SPLIT {
+            factor.fill(T::zero());
+        } else {
+            *factor = *sq;
+        }
         // A block fade scales the selected rows of every deviation; the
         // scalar fade (every state) scales the weights, as it always has.
-        let weight = if self.states.is_all() || lambda == T::one() {
+        let weight = if states.is_all() || lambda == T::one() {
             lambda
         } else {
             let root = lambda.sqrt();
             for d in propagated.pairs.as_flattened_mut() {
-                self.states.scale_vector(d, root);
+                states.scale_vector(d, root);
             }
-            self.states.scale_vector(&mut propagated.center, root);
+            states.scale_vector(&mut propagated.center, root);
             T::one()
         };
         Self::fold(
             self.time_update,
-            &mut factor,
+            factor,
             &propagated.pairs,
             (self.weights.other * weight).sqrt(),
         );
-        weighted_rank_one_in_place(&mut factor, &propagated.center, self.weights.cov0 * weight)
+        weighted_rank_one_in_place(factor, &propagated.center, self.weights.cov0 * weight)
             .map_err(|e| FilterError::DowndateFailed {
                 column: 0,
                 index: e.index,
             })?;
-        ensure_finite(&factor, Quantity::PropagatedCovariance)?;
+        ensure_finite(factor, Quantity::PropagatedCovariance)?;
 
         *x = propagated.mean;
         if A::NEEDS_SPLIT {
-            self.s = factor;
-            self.sq = sq;
-            self.fade = T::one();
-            self.pending = true;
+            self.factor.predicted_spare(sq);
         } else {
-            self.commit(factor);
+            self.commit_spare();
         }
         self.predict_fade = lambda;
         Ok(())
@@ -373,12 +341,13 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             .measurement_noise
             .check(&r, Quantity::MeasurementNoise)?;
         mirror_lower(&mut r);
-        let w = self.weights;
+        let (w, method) = (self.weights, self.time_update);
 
+        let (view, spare) = self.factor.view_and_spare();
         let mut merged = None;
-        let prior = self.current_factor(&mut merged);
+        let prior = view.current(&mut merged);
         let measured = sigma::measure(x, prior, &w, model, space)?;
-        let sz = self.innovation_factor(&measured, &sr)?;
+        let sz = Self::innovation_factor(method, &w, &measured, &sr)?;
         let c = lower_times_transpose(&sz);
         let nu = model.residual(z, &measured.z_hat);
         ensure_finite(&nu, Quantity::Measurement)?;
@@ -386,12 +355,12 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         if A::IS_IDENTITY {
             // Nothing to adapt: the adapter round left out (equal to it to
             // rounding, as a test checks).
-            let (s_new, x_new) = Self::downdated(prior, &measured.cross, &sz, &nu, x, space)?;
+            let x_new = Self::downdate_into(spare, prior, &measured.cross, &sz, &nu, x, space)?;
             let mut white = nu;
             solve_lower(&sz, &mut white);
             *x = x_new;
-            let total_fade = self.predict_fade * if self.pending { self.fade } else { T::one() };
-            self.commit(s_new);
+            let total_fade = self.predict_fade;
+            self.commit_spare();
             return Ok(unadapted_report(
                 nu,
                 &c,
@@ -403,23 +372,9 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
 
         let prior = *prior;
         let split = A::NEEDS_SPLIT.then(|| {
-            match (self.pending, effective_jacobian(&prior, &measured.cross)) {
-                (true, Some(h)) => {
-                    let gq = h * self.sq;
-                    let gp = if self.states.is_all() {
-                        h * self.s
-                    } else {
-                        h * self.states.scale_rows(&self.s, self.fade)
-                    };
-                    let fade = if self.states.is_all() {
-                        self.fade
-                    } else {
-                        T::one()
-                    };
-                    (gp * gp.transpose() * fade, gq * gq.transpose())
-                }
-                _ => (c - r, SMatrix::zeros()),
-            }
+            effective_jacobian(&prior, &measured.cross)
+                .and_then(|h| self.factor.split(&h))
+                .unwrap_or((c - r, SMatrix::zeros()))
         });
         let mut step = GainStep::with_factor(nu, c - r, split, r, sz);
         let mut done = adapt(adapter, &mut step);
@@ -437,22 +392,30 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
                 .map_or_else(|| noise_factor(&r_used), |l| Ok(*l))
         };
         let (prior, measured, sz) = if fade != T::one() {
-            let prior = self.prior_factor(fade);
+            let prior = self.factor.view().merged(fade);
             let measured = sigma::measure(x, &prior, &w, model, space)?;
-            let sz = self.innovation_factor(&measured, &used_factor()?)?;
+            let sz = Self::innovation_factor(method, &w, &measured, &used_factor()?)?;
             (prior, measured, sz)
         } else if done.step.noise_changed() {
-            let sz = self.innovation_factor(&measured, &used_factor()?)?;
+            let sz = Self::innovation_factor(method, &w, &measured, &used_factor()?)?;
             (prior, measured, sz)
         } else {
             (prior, measured, sz)
         };
         let c = lower_times_transpose(&sz);
-        let (s_new, x_new) = Self::downdated(&prior, &measured.cross, &sz, &nu_used, x, space)?;
+        let x_new = Self::downdate_into(
+            self.factor.spare(),
+            &prior,
+            &measured.cross,
+            &sz,
+            &nu_used,
+            x,
+            space,
+        )?;
 
         *x = x_new;
-        let total_fade = self.predict_fade * if self.pending { self.fade * fade } else { fade };
-        self.commit(s_new);
+        let total_fade = self.predict_fade * fade;
+        self.commit_spare();
         let predicted = c - r_used;
         let white = done.whitened(&sz);
         adapter.after_update(
@@ -465,35 +428,37 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
 
 impl<T: Real, const N: usize> SquareRootForm<T, N> {
     /// The measurement update of the factor `prior` and of the state `x`
-    /// (not written): `K = P_xz S_z⁻ᵀ S_z⁻¹`, `x⁺ = x ⊞ K ν` and `S⁺` from
-    /// `S` downdated by the columns of `K S_z`, each checked.
-    fn downdated<const M: usize, S: StateSpace<T, N>>(
+    /// (not written): `K = P_xz S_z⁻ᵀ S_z⁻¹`, `x⁺ = x ⊞ K ν` (returned) and
+    /// `S⁺` (written into `s_new`, garbage on failure) from `S` downdated by
+    /// the columns of `K S_z`, each checked.
+    fn downdate_into<const M: usize, S: StateSpace<T, N>>(
+        s_new: &mut SMatrix<T, N, N>,
         prior: &SMatrix<T, N, N>,
         cross: &SMatrix<T, N, M>,
         sz: &SMatrix<T, M, M>,
         nu_used: &SVector<T, M>,
         x: &SVector<T, N>,
         space: &S,
-    ) -> Result<(SMatrix<T, N, N>, SVector<T, N>), FilterError> {
+    ) -> Result<SVector<T, N>, FilterError> {
         // K = P_xz S_z⁻ᵀ S_z⁻¹.
         let mut k = *cross;
         solve_right_cholesky(sz, &mut k);
         let x_new = space.add(x, &mul_vector(&k, nu_used));
         ensure_finite(&x_new, Quantity::UpdatedState)?;
         let u = mul_lower(&k, sz);
-        let mut s_new = *prior;
+        *s_new = *prior;
         let mut work = u;
-        if downdate_columns_in_place(&mut s_new, &mut work).is_err() {
+        if downdate_columns_in_place(s_new, &mut work).is_err() {
             // Which column and pivot failed, as the downdates one after
             // the other report it (the same arithmetic, so they fail too).
-            s_new = *prior;
+            *s_new = *prior;
             for j in 0..M {
                 let mut col = u.column(j).into_owned();
-                downdate_in_place(&mut s_new, &mut col)
+                downdate_in_place(s_new, &mut col)
                     .map_err(|index| FilterError::DowndateFailed { column: j, index })?;
             }
         }
-        ensure_finite(&s_new, Quantity::UpdatedCovariance)?;
-        Ok((s_new, x_new))
+        ensure_finite(s_new, Quantity::UpdatedCovariance)?;
+        Ok(x_new)
     }
 }
