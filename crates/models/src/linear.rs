@@ -31,6 +31,9 @@ impl<T: Real, const N: usize> LinearProcess<T, N> {
 }
 
 impl<T: Real, const N: usize> ProcessModel<T, N> for LinearProcess<T, N> {
+    // Always inlined, like the product itself: the unscented forms call it
+    // once per sigma point, and a call there cost a tenth of their step.
+    #[inline(always)]
     fn propagate(&self, x: &SVector<T, N>, _dt: T) -> SVector<T, N> {
         mul_vector(&self.transition, x)
     }
@@ -71,6 +74,8 @@ impl<T: Real, const N: usize, const M: usize> LinearMeasurement<T, N, M> {
 impl<T: Real, const N: usize, const M: usize> MeasurementModel<T, N, M>
     for LinearMeasurement<T, N, M>
 {
+    // Always inlined, as `LinearProcess::propagate` is.
+    #[inline(always)]
     fn predict(&self, x: &SVector<T, N>) -> SVector<T, M> {
         mul_vector(&self.matrix, x)
     }

@@ -49,7 +49,9 @@ const COLUMN_ROWS: usize = 12;
 /// nalgebra's general product loads and stores the result once per column;
 /// for the small sizes of a filter model (a 15-state transition applied to
 /// 31 sigma points) keeping it in registers takes a twentieth off the
-/// unscented step's time (measured in `docs/benchmarks.md`).
+/// unscented step's time (measured in `docs/benchmarks.md`). Always inlined:
+/// left to itself the compiler kept it out of line in some builds, called
+/// once per sigma point, which cost the unscented step a tenth of its time.
 ///
 /// ```
 /// use kestrel_core::linalg::mul_vector;
@@ -58,7 +60,7 @@ const COLUMN_ROWS: usize = 12;
 /// let x = Vector3::new(1.0, 0.0, -1.0);
 /// assert_eq!(mul_vector(&a, &x), a * x);
 /// ```
-#[inline]
+#[inline(always)]
 pub fn mul_vector<T: Real, const R: usize, const C: usize>(
     a: &SMatrix<T, R, C>,
     x: &SVector<T, C>,
