@@ -24,7 +24,10 @@ use crate::Real;
     note = "to update with a sensor whose size differs from the adapter's, call `update_with(&model, &z, &mut adapter)` (`&mut ()` for no adapter)"
 )]
 pub trait MeasurementModel<T: Real, const N: usize, const M: usize> {
-    /// The predicted measurement `ẑ = h(x)`.
+    /// The predicted measurement `ẑ = h(x)`. The unscented forms call it
+    /// once per sigma point; see [`ProcessModel::propagate`] on inlining.
+    ///
+    /// [`ProcessModel::propagate`]: crate::ProcessModel::propagate
     fn predict(&self, x: &SVector<T, N>) -> SVector<T, M>;
 
     /// The measurement noise covariance `R` (symmetric positive definite).
