@@ -37,9 +37,8 @@ impl<T: Real, const N: usize> CheckedNoise<T, N> {
         a: &SMatrix<T, M, M>,
         what: Quantity,
     ) -> Result<SMatrix<T, M, M>, FilterError> {
-        let len = M * M;
-        if M <= N && self.size == M && same_values(&self.noise.as_slice()[..len], a.as_slice()) {
-            return Ok(SMatrix::from_column_slice(&self.factor.as_slice()[..len]));
+        if self.holds(a) {
+            return Ok(SMatrix::from_column_slice(&self.factor.as_slice()[..M * M]));
         }
         self.check_and_keep(a, what)
     }
@@ -53,10 +52,16 @@ impl<T: Real, const N: usize> CheckedNoise<T, N> {
         a: &SMatrix<T, N, N>,
         what: Quantity,
     ) -> Result<&SMatrix<T, N, N>, FilterError> {
-        if !(self.size == N && same_values(self.noise.as_slice(), a.as_slice())) {
+        if !self.holds(a) {
             self.check_and_keep(a, what)?;
         }
         Ok(&self.factor)
+    }
+
+    /// Whether the cache holds `a`, element for element as supplied.
+    #[inline(always)]
+    fn holds<const M: usize>(&self, a: &SMatrix<T, M, M>) -> bool {
+        M <= N && self.size == M && same_values(&self.noise.as_slice()[..M * M], a.as_slice())
     }
 
     /// The full check of [`check`](Self::check), out of line, keeping the
