@@ -16,11 +16,11 @@
 //! in `f32` and in [`StateScaling::mixed`] units within a millimetre of
 //! `f64`; with the filters' process noise densities ×1/100
 //! ([`PrecisionOptions::small_process_noise`]) the `f32` UKF in mixed units
-//! loses positive definiteness after 90–120 s while the SR-UKF completes
-//! (seeds 1–6). In natural units with that noise rounding decides which
-//! form fails in `f32` (the UKF on seeds 2 and 4 of 1–6 in the current
-//! build; builds equal to it to rounding have lost it on seeds 1 and 4, and
-//! the SR-UKF on seed 1).
+//! loses positive definiteness after 80–120 s while the SR-UKF completes
+//! (seeds 1–6). In natural units with that noise rounding decides whether
+//! a form fails in `f32` (neither on seeds 1–6 in the current build;
+//! builds equal to it to rounding have lost the UKF on seeds 2 and 4, or 1
+//! and 4, and the SR-UKF on seed 1).
 
 use core::fmt;
 
