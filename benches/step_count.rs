@@ -13,7 +13,9 @@
 //! and glibc's `memset` uses one from 2 KiB on (the unscented steps zero
 //! their sigma sets, 3,600 bytes at 15 states in `f64`); run valgrind with
 //! `GLIBC_TUNABLES=glibc.cpu.x86_rep_stosb_threshold=100000000` to count
-//! those stores as the vector loop's instructions instead. Filters: `kf`, `kf_nis` (the same steps, the caller
+//! those stores as the vector loop's instructions instead.
+//!
+//! Filters: `kf`, `kf_nis` (the same steps, the caller
 //! reading only the report's NIS in place instead of moving the report),
 //! `kf_diag` (diagonal `R`: sequential scalar updates), `kf_diag_batch` (the
 //! same `R` through the batch update; the two, and their `_f32` forms, also

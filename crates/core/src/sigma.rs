@@ -138,9 +138,9 @@ pub(crate) fn points<T: Real, const N: usize, S: StateSpace<T, N>>(
 }
 
 /// `Wc₀ d₀ d₀ᵀ + W Σᵢ (d₊ᵢ d₊ᵢᵀ + d₋ᵢ d₋ᵢᵀ)`, one triangle, mirrored. The
-/// `2N` deviations are gathered into two `D × N` matrices so the sum of
-/// outer products is two products for the register-tiled kernel rather than
-/// `2N` rank-one passes over the triangle (a quarter of the instructions at
+/// `2N` deviations are read in place as the columns of one product for the
+/// register-tiled kernel, `Σ dⱼ dⱼᵀ`, scaled by `W` after, rather than `2N`
+/// rank-one passes over the triangle (a quarter of the instructions at
 /// `N = 15`).
 fn weighted_covariance<T: Real, const D: usize, const N: usize>(
     center: &SVector<T, D>,
@@ -322,6 +322,23 @@ where
 mod tests {
     use super::*;
     use approx::assert_relative_eq;
+
+    #[test]
+    fn zero_pairs_are_zero_in_both_forms() {
+        // At most four elements: the `SVector::zeros()` form; above: the
+        // array of zeros.
+        let small: Pairs<f64, 2, 2> = zero_pairs();
+        let large: Pairs<f32, 6, 15> = zero_pairs();
+        assert!(small
+            .as_flattened()
+            .iter()
+            .all(|v| v.iter().all(|&x| x == 0.0)));
+        assert!(large
+            .as_flattened()
+            .iter()
+            .all(|v| v.iter().all(|&x| x == 0.0)));
+        assert_eq!(large.as_flattened().len(), 30);
+    }
 
     #[test]
     fn weighted_covariance_equals_the_sum_of_weighted_outer_products() {
