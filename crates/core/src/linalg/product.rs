@@ -11,7 +11,8 @@
 //! two vector registers (`f64` on SSE2), while when it is one register
 //! (`f32`, and `f64` with AVX) they are covered by a full-height tile that
 //! overlaps the one before it (the rows in common computed twice, to the
-//! same value). A tile is four rows, or eight for `f32` with AVX.
+//! same value). A tile is eight rows in `f32` (two SSE2 registers, one AVX
+//! register) and four in `f64` (two SSE2 registers, one AVX register).
 
 use nalgebra::{SMatrix, SVector};
 
@@ -27,11 +28,16 @@ pub(super) const fn lanes<T>() -> usize {
     VECTOR_BYTES / core::mem::size_of::<T>()
 }
 
-/// Tile rows: four (two SSE2 registers of `f64`, one of `f32`, one AVX
-/// register of `f64`), or eight where a register holds eight (`f32` with
-/// AVX), so that a tile's column is whole registers either way.
+/// Tile rows: eight for `f32` (two SSE2 registers, one AVX register),
+/// four for `f64` (two SSE2 registers, one AVX register), so that a tile's
+/// column is whole registers either way. Eight `f32` rows on SSE2 rather
+/// than four share each broadcast element of the right-hand factor between
+/// two multiplies, and a broadcast is a shuffle on the same port as half
+/// the additions: the `f32` KF step at 15 states 6 % faster, the `f32` UKF
+/// step 1 % (benchmark notes, thirty-fourth round); in `f64` eight rows
+/// (four SSE2 registers) made both steps 7–13 % slower.
 const fn tile_rows<T>() -> usize {
-    if lanes::<T>() >= 8 {
+    if core::mem::size_of::<T>() <= 4 {
         8
     } else {
         4
@@ -163,15 +169,15 @@ pub(crate) fn add_products<T, const R: usize, const C: usize, X, Y, const L: usi
     // functions against 192 in the umbrella crate's test suite; figures in
     // docs/verification.md, "CI").
     //
-    // Tiled, the rows left over are covered, when a tile's column is one
-    // register, by one more full-height tile ending at the last row,
-    // overlapping the tile before it. The rows in common are computed twice
-    // with the same operations in the same order, so they are written twice
-    // with the same value; a 15-row `f32` column then takes four vector
-    // operations rather than three and three scalar ones (measured: the
-    // `f32` KF step at 15 states 6 % faster). With two registers to a
-    // tile's column (`f64` on SSE2) edge tiles of the rows' own size are
-    // as cheap.
+    // Tiled, the rows left over are covered, in `f32` and in `f64` with
+    // AVX, by one more full-height tile ending at the last row, overlapping
+    // the tile before it. The rows in common are computed twice with the
+    // same operations in the same order, so they are written twice with the
+    // same value; a 15-row `f32` column then takes four vector operations
+    // rather than three and three scalar ones (measured with four-row
+    // tiles: the `f32` KF step at 15 states 6 % faster). With two registers
+    // to a four-row tile's column (`f64` on SSE2) edge tiles of the rows'
+    // own size are as cheap.
     if const { R <= COLUMN_ROWS || C < NR } {
         columns(out, init, x, y);
     } else if const { tile_rows::<T>() == 8 } {
@@ -481,8 +487,8 @@ mod tests {
         }
     }
 
-    /// Every tiling a target can select (4 rows on SSE2, 8 for `f32` with
-    /// AVX; the rows left over by edge tiles or by a full tile overlapping
+    /// Every tiling a target can select (8 rows for `f32`, 4 for `f64`;
+    /// the rows left over by edge tiles or by a full tile overlapping
     /// the one before it) gives the in-order sums exactly, the rows
     /// computed twice included, in both modes, whichever target runs the
     /// tests: 0 to 7 rows left over after 8-row tiles, 0 to 3 after 4-row
