@@ -126,7 +126,7 @@ fn semidefinite_by<T: Real, const N: usize>(
 /// `max` passes it over, and left to the pivot tests), in four running
 /// maxima over every fourth diagonal element: one maximum after another is
 /// a chain of `N` dependent operations that the factorisation's first
-/// pivot waits on (2 % of the unscented step at 15 states, benchmark
+/// pivot waits on (2–3 % of the unscented step at 15 states; benchmark
 /// notes, thirty-fourth round). The maximum of a set does not depend on
 /// the order it is taken in, so the result is that of the plain fold.
 #[inline(always)]
@@ -555,13 +555,6 @@ mod tests {
         check::<9>();
     }
 
-    /// The column loop by four-row blocks counted from the last row does,
-    /// row for row, the arithmetic of the plain loop from the diagonal
-    /// down: the factors are equal bit for bit, at sizes with every head
-    /// length, in `f64` and `f32`; the strict upper triangle, read by the
-    /// blocks' first rows as scratch, may hold anything (here NaN), and a
-    /// zero column in the head or in a block, and a failing pivot, come out
-    /// the same.
     /// The four running maxima give the plain fold of `max` over the
     /// diagonal's magnitudes: every size from 0 to 9 (every count of
     /// elements per running maximum), with NaN, infinities and signed
@@ -611,6 +604,13 @@ mod tests {
         check::<9>();
     }
 
+    /// The column loop by four-row blocks counted from the last row does,
+    /// row for row, the arithmetic of the plain loop from the diagonal
+    /// down: the factors are equal bit for bit, at sizes with every head
+    /// length, in `f64` and `f32`; the strict upper triangle, read by the
+    /// blocks' first rows as scratch, may hold anything (here NaN), and a
+    /// zero column in the head or in a block, and a failing pivot, come out
+    /// the same.
     #[test]
     fn the_blocked_column_loop_equals_a_row_loop_bit_for_bit() {
         /// Left-looking Cholesky with the plain loops (four columns per

@@ -7,9 +7,8 @@
 //! registers over the whole inner dimension, which the compiler unrolls and
 //! vectorises; tiles wholly above the diagonal are skipped when only the
 //! lower triangle is wanted. The columns left over at the edges get tiles of
-//! their own smaller fixed size; so do the rows when a tile's column spans
-//! two vector registers (`f64` on SSE2), while when it is one register
-//! (`f32`, and `f64` with AVX) they are covered by a full-height tile that
+//! their own smaller fixed size; so do the rows in `f64` on SSE2, while in
+//! `f32`, and in `f64` with AVX, they are covered by a full-height tile that
 //! overlaps the one before it (the rows in common computed twice, to the
 //! same value). A tile is eight rows in `f32` (two SSE2 registers, one AVX
 //! register) and four in `f64` (two SSE2 registers, one AVX register).
