@@ -203,8 +203,8 @@ fn factor<T: Real, const N: usize>(
     for j in 0..N {
         let (done, rest) = columns.split_at_mut(j);
         let col = &mut rest[0];
-        // The first block holding row `j`; the head only while `j` is in it.
-        let first = j.saturating_sub(head) / 4;
+        // The head only while `j` is in it.
+        let first = first_block::<N>(j);
         let in_head = j < head;
         // From `UNROLL_FROM` states on, four finished columns per pass:
         // each element still takes its subtractions one at a time in
@@ -293,7 +293,7 @@ fn finish_column<T: Real, const N: usize>(
         }
     };
     let head = N % 4;
-    let first = j.saturating_sub(head) / 4;
+    let first = first_block::<N>(j);
     let (h, b) = blocks_mut(col);
     for (i, v) in h.iter_mut().enumerate() {
         *v = element(i, *v);
@@ -315,6 +315,13 @@ fn finish_column<T: Real, const N: usize>(
         }
         *block = v;
     }
+}
+
+/// The index among a column's four-row [`blocks`] of the first block that
+/// holds row `j` or a row below it (0 while `j` is in the head).
+#[inline(always)]
+fn first_block<const N: usize>(j: usize) -> usize {
+    j.saturating_sub(N % 4) / 4
 }
 
 /// A column as its head of `N mod 4` rows and the four-row blocks after
