@@ -5,11 +5,11 @@
 use kestrel::nav::engine::{ErrorSystem, InitialUncertainty, Ins15, LooselyCoupled};
 use kestrel::nav::measurement::GnssAntenna;
 use kestrel::nav::nalgebra::{SVector, Vector3};
-use kestrel::nav::sim::{
+use kestrel::nav::{Ellipsoid, Geodetic, ImuSpec, NavError, Strapdown};
+use kestrel::sim::{
     sensor_rng, GnssConfig, GnssSensor, ImuErrors, ImuSensor, Segment, SensorStream, TimeWindow,
     Trajectory, TrajectorySpec, Vehicle,
 };
-use kestrel::nav::{Ellipsoid, Geodetic, ImuSpec, NavError, Strapdown};
 use kestrel::Ekf;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

@@ -13,8 +13,8 @@ use criterion::Criterion;
 use kestrel::nav::engine::{ErrorSystem, InitialUncertainty, Ins15, LooselyCoupled};
 use kestrel::nav::measurement::{GnssAntenna, GnssFix};
 use kestrel::nav::nalgebra::SVector;
-use kestrel::nav::sim::{GnssSensor, Segment, Trajectory, TrajectorySpec, Vehicle};
 use kestrel::nav::{Ellipsoid, Geodetic, ImuIncrement, NavState, Strapdown};
+use kestrel::sim::{GnssSensor, Segment, Trajectory, TrajectorySpec, Vehicle};
 use kestrel::Ekf;
 use tactical::{gnss_config, imu_sensor, lever, spec};
 

@@ -1,14 +1,8 @@
-//! The `demo` command: radar tracking Monte Carlo with the three forms.
-
-use std::time::Instant;
+//! `kestrel demo`: the radar tracking Monte Carlo of
+//! [`kestrel_app::demo`], printed as a table.
 
 use clap::Args;
-use kestrel::models::{ConstantVelocity2d, RangeBearing};
-use kestrel::nalgebra::{Matrix2, Matrix4, Vector2, Vector4};
-use kestrel::{Ekf, Filter, FilterError, MeasurementModel, ProcessModel, SrUkf, Ukf};
-use rand::{Rng, RngExt, SeedableRng};
-use rand_chacha::ChaCha8Rng;
-use rand_distr::StandardNormal;
+use kestrel_app::demo::{radar_demo, DemoOptions, ACCEL_PSD, BEARING_SIGMA, RANGE_SIGMA};
 
 /// Options of `kestrel demo`.
 #[derive(Debug, Args)]
@@ -24,93 +18,16 @@ pub struct DemoArgs {
     seed: u64,
 }
 
-/// Acceleration noise density of the target (m²/s³).
-const ACCEL_PSD: f64 = 0.5;
-/// Radar range noise (m) and bearing noise (rad).
-const RANGE_SIGMA: f64 = 10.0;
-const BEARING_SIGMA: f64 = 0.01;
-/// Scan interval (s).
-const DT: f64 = 1.0;
-
-/// Accumulated statistics of one filter.
-#[derive(Default)]
-struct Stats {
-    pos_sq: f64,
-    vel_sq: f64,
-    nees: f64,
-    nis: f64,
-    samples: usize,
-    updates: usize,
-    errors: usize,
-    nanos: u128,
-}
-
-/// What one predict + update cycle gives: the estimate, its covariance and
-/// the NIS.
-type Cycle = Result<(Vector4<f64>, Matrix4<f64>, f64), FilterError>;
-
+/// Runs the demo and prints its table.
+///
+/// # Errors
+/// A one-line message for zero runs or steps.
 pub fn run(args: &DemoArgs) -> Result<(), String> {
-    if args.runs == 0 || args.steps == 0 {
-        return Err("--runs and --steps must be at least 1".into());
-    }
-    let cv = ConstantVelocity2d::new(ACCEL_PSD).map_err(|e| e.to_string())?;
-    let radar = RangeBearing::<f64, 4>::new(
-        0,
-        2,
-        Matrix2::new(RANGE_SIGMA.powi(2), 0.0, 0.0, BEARING_SIGMA.powi(2)),
-    )
-    .map_err(|e| e.to_string())?;
-    let p0 = Matrix4::from_diagonal(&Vector4::new(
-        50.0_f64.powi(2),
-        5.0_f64.powi(2),
-        50.0_f64.powi(2),
-        5.0_f64.powi(2),
-    ));
-    let q_chol = cv
-        .noise(&Vector4::zeros(), DT)
-        .cholesky()
-        .ok_or("process noise not positive definite")?
-        .l();
-    let p0_chol = p0.cholesky().ok_or("initial covariance")?.l();
-    let r_chol = radar.noise().cholesky().ok_or("radar noise")?.l();
-
-    let names = ["EKF (Joseph)", "UKF", "SR-UKF"];
-    let mut stats: [Stats; 3] = Default::default();
-    let mut rng = ChaCha8Rng::seed_from_u64(args.seed);
-    for _ in 0..args.runs {
-        let mut truth = Vector4::new(2000.0, -15.0, 1500.0, 10.0);
-        let x0 = truth + p0_chol * normal4(&mut rng);
-        let mut ekf = Ekf::new(x0, p0).map_err(|e| e.to_string())?;
-        let mut ukf = Ukf::new(x0, p0).map_err(|e| e.to_string())?;
-        let mut srukf = SrUkf::new(x0, p0).map_err(|e| e.to_string())?;
-        for _ in 0..args.steps {
-            truth = cv.propagate(&truth, DT) + q_chol * normal4(&mut rng);
-            let noise =
-                r_chol * Vector2::new(rng.sample(StandardNormal), rng.sample(StandardNormal));
-            let z = radar.predict(&truth) + noise;
-            let outcomes = [
-                timed(|| cycle(&mut ekf, &cv, &radar, &z)),
-                timed(|| cycle(&mut ukf, &cv, &radar, &z)),
-                timed(|| cycle(&mut srukf, &cv, &radar, &z)),
-            ];
-            for ((outcome, nanos), s) in outcomes.into_iter().zip(stats.iter_mut()) {
-                s.nanos += nanos;
-                s.samples += 1;
-                match outcome {
-                    Ok((x, p, nis)) => {
-                        let e = x - truth;
-                        s.pos_sq += e[0] * e[0] + e[2] * e[2];
-                        s.vel_sq += e[1] * e[1] + e[3] * e[3];
-                        s.nees += p.cholesky().map_or(f64::NAN, |c| e.dot(&c.solve(&e)));
-                        s.nis += nis;
-                        s.updates += 1;
-                    }
-                    Err(_) => s.errors += 1,
-                }
-            }
-        }
-    }
-
+    let rows = radar_demo(&DemoOptions {
+        runs: args.runs,
+        steps: args.steps,
+        seed: args.seed,
+    })?;
     println!(
         "Radar tracking, constant-velocity target: {} runs × {} scans, seed {}",
         args.runs, args.steps, args.seed
@@ -122,53 +39,20 @@ pub fn run(args: &DemoArgs) -> Result<(), String> {
         "{:<14}{:>14}{:>16}{:>12}{:>12}{:>10}{:>14}",
         "filter", "pos RMS [m]", "vel RMS [m/s]", "mean NEES", "mean NIS", "errors", "ns / cycle"
     );
-    for (name, s) in names.iter().zip(&stats) {
-        let n = s.updates.max(1) as f64;
+    for r in &rows {
         println!(
             "{:<14}{:>14.3}{:>16.4}{:>12.3}{:>12.3}{:>10}{:>14.0}",
-            name,
-            (s.pos_sq / n).sqrt(),
-            (s.vel_sq / n).sqrt(),
-            s.nees / n,
-            s.nis / n,
-            s.errors,
-            s.nanos as f64 / s.samples.max(1) as f64,
+            r.name,
+            r.position_rms,
+            r.velocity_rms,
+            r.mean_nees,
+            r.mean_nis,
+            r.errors,
+            r.nanos_per_cycle,
         );
     }
     println!(
         "\nA consistent filter has mean NEES ≈ 4 (state size) and mean NIS ≈ 2 (measurement size)."
     );
     Ok(())
-}
-
-/// Runs `f` and measures its wall time in nanoseconds.
-fn timed(f: impl FnOnce() -> Cycle) -> (Cycle, u128) {
-    let start = Instant::now();
-    let out = f();
-    (out, start.elapsed().as_nanos())
-}
-
-/// One predict + update; returns the estimate, its covariance and the NIS.
-fn cycle<F>(
-    filter: &mut Filter<f64, 4, F>,
-    cv: &ConstantVelocity2d<f64>,
-    radar: &RangeBearing<f64, 4>,
-    z: &Vector2<f64>,
-) -> Cycle
-where
-    F: kestrel::form::PredictForm<f64, 4, ConstantVelocity2d<f64>>
-        + kestrel::form::UpdateForm<f64, 4, RangeBearing<f64, 4>, 2>,
-{
-    filter.predict(cv, DT)?;
-    let report = filter.update(radar, z)?;
-    Ok((*filter.state(), filter.covariance(), report.nis))
-}
-
-fn normal4(rng: &mut impl Rng) -> Vector4<f64> {
-    Vector4::new(
-        rng.sample(StandardNormal),
-        rng.sample(StandardNormal),
-        rng.sample(StandardNormal),
-        rng.sample(StandardNormal),
-    )
 }

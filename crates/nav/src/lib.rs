@@ -2,7 +2,8 @@
 //!
 //! Strapdown inertial navigation and its GNSS / odometer aiding on kestrel
 //! filters: the GPS/SINS and SINS/odometer systems of the project's five
-//! papers, and the simulation that reproduces their experiments.
+//! papers. Simulated drives come from `kestrel-sim`; the papers'
+//! experiments and the processing of recorded logs from `kestrel-app`.
 //!
 //! Conventions: navigation frame NED; body frame forward-right-down;
 //! attitude `C_b^n` as a unit quaternion; Euler angles ZYX (roll, pitch,
@@ -18,7 +19,6 @@
 //! | [`imu_spec`], [`error_model`], [`correction`] | sensor specifications, the 15- and 18-state error models (`F`, `Φ`, `Q_d`), feedback |
 //! | [`measurement`] | GNSS position(+velocity) with lever arm, attitude+velocity+position, odometer and non-holonomic constraint |
 //! | [`engine`], [`odometer`] | the loosely coupled engine; paper 003's 16-state odometer system and fault processing |
-//! | [`sim`], [`scenario`], [`experiment`] | trajectories with exact IMU increments, sensor models with faults, the papers' scenarios, running them |
 //!
 //! A stationary INS with perfect sensors stays put:
 //!
@@ -46,15 +46,12 @@ pub mod correction;
 pub mod earth;
 pub mod engine;
 pub mod error_model;
-pub mod experiment;
 pub mod geodetic;
 pub mod imu;
 pub mod imu_spec;
 pub mod measurement;
 pub mod mechanisation;
 pub mod odometer;
-pub mod scenario;
-pub mod sim;
 pub mod standstill;
 pub mod state;
 

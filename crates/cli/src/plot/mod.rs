@@ -18,7 +18,6 @@
 //! is clipped to the panel's edge and named with its peak in the panel
 //! caption. Non-finite values are skipped.
 
-mod chi2;
 mod figure;
 mod font;
 mod legend;
@@ -34,9 +33,8 @@ mod track;
 
 use std::path::{Path, PathBuf};
 
-use kestrel::nav::experiment::{EpochRecord, PositionAxes};
+use kestrel_app::experiment::{EpochRecord, PositionAxes};
 
-pub use chi2::chi2_quantile;
 pub use process_figures::{process_figures, ProcessPlots, SolutionErrors, PROCESS_FIGURES};
 pub use sensitivity::sensitivity_figure;
 pub use thin::{split_at_gaps, thin};
@@ -94,7 +92,7 @@ impl Default for FigureOptions {
 ///
 /// ```
 /// use kestrel_cli::plot::{error_figures, FilterTrace};
-/// use kestrel::nav::experiment::{Adaptation, EpochRecord, PositionAxes};
+/// use kestrel_app::experiment::{Adaptation, EpochRecord, PositionAxes};
 /// use kestrel::nav::nalgebra::Vector3;
 /// let records: Vec<EpochRecord> = (0..50)
 ///     .map(|i| EpochRecord { time: i as f64, position: Vector3::new(1.0, -1.0, 0.5),
@@ -123,7 +121,7 @@ pub fn error_figures(
 ///
 /// ```
 /// use kestrel_cli::plot::{error_figures_with, FigureOptions};
-/// use kestrel::nav::experiment::PositionAxes;
+/// use kestrel_app::experiment::PositionAxes;
 /// let dir = std::env::temp_dir().join("kestrel-doc-empty-figures");
 /// let options = FigureOptions { nis_dof: Some(3), ..FigureOptions::default() };
 /// let files = error_figures_with(&dir, "nothing yet", PositionAxes::EastNorthUp, &[], &options);
@@ -208,7 +206,7 @@ pub fn adaptation_figure(
 /// freedom.
 fn nis_bound(options: &FigureOptions) -> Option<Reference> {
     options.nis_dof.and_then(|dof| {
-        let value = chi2_quantile(dof, options.nis_probability)?;
+        let value = kestrel::adaptive::chi_square_quantile(options.nis_probability, dof).ok()?;
         Some(Reference {
             value,
             label: format!(

@@ -1,8 +1,8 @@
 //! The papers' figures as panels: errors per axis and what the adapters
 //! did.
 
-use kestrel::nav::experiment::{Adaptation, EpochRecord, PositionAxes};
 use kestrel::nav::nalgebra::Vector3;
+use kestrel_app::experiment::{Adaptation, EpochRecord, PositionAxes};
 
 use super::figure::{Panel, Reference, Scale, Series};
 use super::range::wants_log;

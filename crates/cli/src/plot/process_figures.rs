@@ -14,9 +14,9 @@
 
 use std::path::{Path, PathBuf};
 
-use kestrel::nav::experiment::{EpochRecord, PositionAxes};
 use kestrel::nav::nalgebra::Vector3;
-use kestrel_io::process::{StateRow, StateTraces, Track, NEES_BAND_3DOF};
+use kestrel_app::experiment::{EpochRecord, PositionAxes};
+use kestrel_app::process::{chi_square_band, StateRow, StateTraces, Track};
 
 use super::figure::{Figure, Panel, Scale, Series};
 use super::panels;
@@ -199,7 +199,7 @@ fn error_panels(
 
 /// The NEES of every solution and the band's ends as two more lines.
 fn nees_panel(solutions: &[SolutionErrors<'_>]) -> (Vec<String>, Panel) {
-    let (low, high) = NEES_BAND_3DOF;
+    let (low, high) = chi_square_band(3);
     let times = solutions.iter().flat_map(|s| s.nees.iter().map(|p| p.0));
     let (t0, t1) = times.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), t| {
         (a.min(t), b.max(t))

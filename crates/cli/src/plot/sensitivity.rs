@@ -11,8 +11,8 @@ use super::figure::WIDTH;
 use super::font::FAMILY;
 use super::palette::colour;
 use super::save::{save_png_and_svg, Drawing};
-use crate::reproduce::StudyRow;
 use crate::CliError;
+use kestrel_app::reproduce::StudyRow;
 
 /// Height of one variant's row, px.
 const ROW: u32 = 30;
@@ -22,7 +22,7 @@ const FRAME: u32 = 150;
 const LABELS: u32 = 340;
 
 /// Writes `<dir>/<stem>.png` and `<dir>/<stem>.svg`: metric `metric` (an
-/// index into [`STUDY_METRICS`](crate::reproduce::STUDY_METRICS)) of every
+/// index into [`STUDY_METRICS`](kestrel_app::reproduce::STUDY_METRICS)) of every
 /// row. Nothing is written for no rows.
 ///
 /// # Errors
@@ -59,7 +59,7 @@ fn draw<DB: DrawingBackend>(
 ) -> Result<(), String> {
     let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(e)?;
-    let what = crate::reproduce::STUDY_METRICS[metric];
+    let what = kestrel_app::reproduce::STUDY_METRICS[metric];
     let title = format!(
         "Improvement of each paper's filter over its baseline ({what} RMS ratio), per variant"
     );

@@ -13,7 +13,7 @@ use super::palette::colour;
 use super::save::{save_png_and_svg, Drawing};
 use super::ticks::linear_ticks;
 use crate::CliError;
-use kestrel_io::process::Track;
+use kestrel_app::process::Track;
 
 /// Height of the track figure, px.
 const HEIGHT: u32 = 1000;

@@ -13,8 +13,8 @@ use crate::support;
 
 use std::path::Path;
 
+use kestrel_app::process::config::YawSource;
 use kestrel_cli::process::{process, ProcessArgs};
-use kestrel_io::process::config::YawSource;
 use support::{run_args, simulate_file, tmp_dir};
 
 fn args(dir: &Path, config: &str, out: &str) -> ProcessArgs {

@@ -10,6 +10,4 @@ mod process_cli;
 mod real_logs;
 mod reproduce;
 mod scale_factors;
-mod scenario_file;
-mod shared_simulation;
 mod smooth;

@@ -3,11 +3,11 @@
 
 use std::path::{Path, PathBuf};
 
-use kestrel::nav::experiment::{Adaptation, EpochRecord, PositionAxes};
 use kestrel::nav::nalgebra::Vector3;
+use kestrel_app::experiment::{Adaptation, EpochRecord, PositionAxes};
+use kestrel_app::output::write_epochs_csv;
 use kestrel_cli::plot::{error_figures, error_figures_with, FigureOptions, FilterTrace};
 use kestrel_cli::CliError;
-use kestrel_io::output::write_epochs_csv;
 
 /// A fresh directory for one test.
 fn out_dir(name: &str) -> PathBuf {
@@ -470,13 +470,13 @@ fn epochs_csv_in_north_east_down_and_without_records() {
 #[test]
 #[ignore = "slow; renders figures for inspection"]
 fn figures_of_built_in_scenarios() {
-    use kestrel::nav::experiment::{run, RunOptions};
+    use kestrel_app::experiment::{run, RunOptions};
     let seconds: f64 = std::env::var("KESTREL_PLOT_SECONDS")
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(120.0);
     for name in ["000", "002", "003", "004"] {
-        let scenario = kestrel::nav::scenario::by_name(name).unwrap();
+        let scenario = kestrel_app::scenario::by_name(name).unwrap();
         let options = RunOptions::default().with_duration(seconds);
         let runs: Vec<(&str, Vec<EpochRecord>)> = scenario
             .filters

@@ -6,11 +6,11 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use kestrel::nav::experiment::{run, RunOptions};
-use kestrel::nav::scenario::{by_name, FilterKind};
+use kestrel_app::experiment::{run, RunOptions};
+use kestrel_app::process::WindowKind;
+use kestrel_app::scenario::{by_name, FilterKind};
+use kestrel_app::simulate::{process_config, simulate, SimulateOptions};
 use kestrel_cli::process::{process, ProcessArgs};
-use kestrel_cli::simulate::{process_config, simulate, SimulateArgs};
-use kestrel_io::process::WindowKind;
 
 /// A fresh directory in the temporary directory, unique to this process
 /// and call.
@@ -25,7 +25,7 @@ fn tmp_dir(name: &str) -> PathBuf {
 
 fn sim(name: &str, seed: u64, duration: f64) -> PathBuf {
     let dir = tmp_dir(&format!("sim{name}"));
-    simulate(&SimulateArgs {
+    simulate(&SimulateOptions {
         scenario: name.into(),
         seed: Some(seed),
         duration: Some(duration),
@@ -327,7 +327,7 @@ fn outage_windows_drop_the_fixes_inside_them() {
         .nth(1)
         .unwrap()
         .starts_with("outage,20,40,20,4000,"));
-    let summary = kestrel_io::process::summary(&coast);
+    let summary = kestrel_app::process::summary(&coast);
     assert!(
         summary.contains("errors against the truth at 12000 epochs"),
         "{summary}"
@@ -443,7 +443,7 @@ fn the_binary_simulates_processes_and_refuses_bad_input() {
     let csv = std::fs::read_to_string(dir.join("result/result.csv")).unwrap();
     assert_eq!(
         csv.lines().next(),
-        Some(kestrel_io::process::RESULT_CSV_HEADER)
+        Some(kestrel_app::process::RESULT_CSV_HEADER)
     );
     assert_eq!(csv.lines().count(), 4001);
     for f in [
@@ -516,8 +516,8 @@ antlever:  [ 0.136, -0.301, -0.184 ]\n";
 
 #[test]
 fn a_kf_gins_configuration_imports_with_every_unit_exact() {
-    use kestrel_cli::import::kf_gins;
-    use kestrel_io::process::config::parse;
+    use kestrel_app::import::kf_gins;
+    use kestrel_app::process::config::parse;
     let yaml = Path::new("kf-gins.yaml");
     let i = kf_gins(KF_GINS, yaml, None).unwrap();
     let s = parse(&i.toml, Path::new("imported.toml")).unwrap();

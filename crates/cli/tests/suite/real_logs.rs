@@ -10,9 +10,9 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use kestrel_app::process::summary;
+use kestrel_app::simulate::{simulate, SimulateOptions};
 use kestrel_cli::process::{process, ProcessArgs};
-use kestrel_cli::simulate::{simulate, SimulateArgs};
-use kestrel_io::process::summary;
 
 use crate::support;
 
@@ -21,7 +21,7 @@ fn sim(seed: u64, duration: f64) -> PathBuf {
     let k = N.fetch_add(1, Ordering::Relaxed);
     let dir = std::env::temp_dir().join(format!("kestrel-timing-{}-{k}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    simulate(&SimulateArgs {
+    simulate(&SimulateOptions {
         scenario: "002".into(),
         seed: Some(seed),
         duration: Some(duration),
@@ -283,7 +283,7 @@ fn outputs_never_replace_inputs() {
 fn simulate_refuses_to_overwrite_without_force() {
     let dir = sim(8, 2.0);
     let imu = std::fs::read(dir.join("imu.txt")).unwrap();
-    let mut a = SimulateArgs {
+    let mut a = SimulateOptions {
         scenario: "002".into(),
         seed: Some(9),
         duration: Some(2.0),
@@ -519,7 +519,7 @@ fn every_gnss_line_is_read_and_checked_even_after_the_imu_ends() {
 fn simulated_sizes_are_bounded_before_work_starts() {
     let dir = std::env::temp_dir().join(format!("kestrel-size-{}", std::process::id()));
     let try_sim = |duration: Option<f64>, imu_rate: Option<f64>| {
-        simulate(&SimulateArgs {
+        simulate(&SimulateOptions {
             scenario: "002".into(),
             seed: Some(1),
             duration,
@@ -753,7 +753,7 @@ fn the_odometer_in_its_own_file_and_with_position_only_gnss() {
     let k = N.fetch_add(1, Ordering::Relaxed);
     let dir = std::env::temp_dir().join(format!("kestrel-odo-{}-{k}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    simulate(&SimulateArgs {
+    simulate(&SimulateOptions {
         scenario: "003".into(),
         seed: Some(2),
         duration: Some(20.0),
@@ -892,7 +892,7 @@ fn a_position_only_reference_and_one_at_the_antenna() {
     // scenario): the truth moved by the lever arm. Compared at the antenna
     // it gives the errors at the IMU to within the attitude error × 1.1 m
     // (millimetres); compared at the IMU it is a metre off vertically.
-    let settings = kestrel_io::process::config::load(&dir.join("process.toml")).unwrap();
+    let settings = kestrel_app::process::config::load(&dir.join("process.toml")).unwrap();
     let lever = settings.lever_arm;
     let mut moved = String::new();
     for r in kestrel_io::gins::NavReader::open(&dir.join("truth.nav")).unwrap() {

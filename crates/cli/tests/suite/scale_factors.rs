@@ -17,8 +17,8 @@ use crate::support;
 
 use std::path::Path;
 
+use kestrel_app::process::ProcessReport;
 use kestrel_cli::process::process;
-use kestrel_io::process::ProcessReport;
 use support::{forward_drift as max_drift, run_args, simulate_file, tmp_dir, OUTAGES};
 
 fn run(dir: &Path, config: &Path, out: &str) -> ProcessReport {

@@ -153,7 +153,7 @@ fn a_failed_smoothed_run_leaves_nothing_behind() {
 /// and the σ (forward and smoothed), and no error figure.
 #[test]
 fn figures_without_a_truth() {
-    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("../io/examples/data");
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("../app/examples/data");
     let out = tmp_dir("smooth", "figures");
     let report = process(&ProcessArgs {
         imu: data.join("imu.txt"),

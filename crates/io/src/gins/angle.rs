@@ -2,7 +2,7 @@
 
 use core::fmt;
 
-use kestrel::nav::Geodetic;
+use kestrel_nav::Geodetic;
 
 /// Radians from degrees, the one conversion every reader uses.
 ///

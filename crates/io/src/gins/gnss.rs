@@ -4,9 +4,9 @@ use std::fs::File;
 use std::io::{BufRead, BufReader, BufWriter, Write};
 use std::path::Path;
 
-use kestrel::nav::measurement::GnssFix;
-use kestrel::nav::nalgebra::Vector3;
-use kestrel::nav::Geodetic;
+use kestrel_nav::measurement::GnssFix;
+use kestrel_nav::nalgebra::Vector3;
+use kestrel_nav::Geodetic;
 
 use super::angle::{degrees_to_radians, PositionColumns};
 use super::line::{open, Lines};
@@ -108,7 +108,7 @@ impl<R: BufRead> Iterator for GnssReader<R> {
 ///
 /// ```
 /// use kestrel_io::gins::{GnssReader, GnssWriter};
-/// use kestrel::nav::{measurement::GnssFix, nalgebra::Vector3, Geodetic};
+/// use kestrel_nav::{measurement::GnssFix, nalgebra::Vector3, Geodetic};
 /// let fix = GnssFix::new(1.5, Geodetic::from_degrees(30.5, 114.2, 21.3), Vector3::new(1.0, 2.0, 0.1))
 ///     .with_std(Vector3::new(0.5, 0.5, 1.0), Vector3::repeat(0.05));
 /// let mut w = GnssWriter::new(Vec::new());

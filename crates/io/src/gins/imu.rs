@@ -4,8 +4,8 @@ use std::fs::File;
 use std::io::{BufRead, BufReader, BufWriter, Write};
 use std::path::Path;
 
-use kestrel::nav::nalgebra::{Matrix3, Vector3};
-use kestrel::nav::ImuIncrement;
+use kestrel_nav::nalgebra::{Matrix3, Vector3};
+use kestrel_nav::ImuIncrement;
 
 use super::imu_format::{ImuFormat, Measures, Sample, TimeBase};
 use super::line::{open, Fields, Lines};
@@ -28,7 +28,7 @@ const LAYOUT: &str = "time, Δθ xyz, Δv xyz, optional odometer speed";
 ///
 /// ```
 /// use kestrel_io::gins::ImuRecord;
-/// use kestrel::nav::nalgebra::Vector3;
+/// use kestrel_nav::nalgebra::Vector3;
 /// let r = ImuRecord { time: 0.01, dtheta: Vector3::zeros(), dvel: Vector3::zeros(),
 ///     odometer: None, line: 1 };
 /// assert_eq!(r.increment(0.005).dt, 0.005);
@@ -236,7 +236,7 @@ fn configured_record<R: BufRead>(
 ///
 /// ```
 /// use kestrel_io::gins::{ImuReader, ImuRecord, ImuWriter};
-/// use kestrel::nav::nalgebra::Vector3;
+/// use kestrel_nav::nalgebra::Vector3;
 /// let r = ImuRecord { time: 0.1 + 0.2, dtheta: Vector3::new(1e-7, -3.3e-6, 0.1),
 ///     dvel: Vector3::new(0.1, 0.2, -0.098), odometer: Some(12.3), line: 0 };
 /// let mut w = ImuWriter::new(Vec::new());

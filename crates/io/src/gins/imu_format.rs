@@ -3,8 +3,8 @@
 //! header, and GPS seconds of week, GPS week + seconds or Unix time — read
 //! by configuration (`[imu_file]`) without a conversion script.
 
-use kestrel::nav::nalgebra::{Matrix3, Vector3};
-use kestrel::nav::Euler;
+use kestrel_nav::nalgebra::{Matrix3, Vector3};
+use kestrel_nav::Euler;
 
 use super::line::{Delimiter, Selection};
 use super::nav::WEEK_SECONDS;

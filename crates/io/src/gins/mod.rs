@@ -40,7 +40,7 @@ pub use angle::{degrees_exact, degrees_to_radians, invert_exact};
 pub use gnss::{GnssReader, GnssWriter};
 pub use imu::{ImuReader, ImuRecord, ImuWriter};
 pub use line::{Delimiter, Fields};
-pub(crate) use nav::WEEK_SECONDS;
+pub use nav::WEEK_SECONDS;
 pub use nav::{nav_line, NavReader, NavRecord, NavWriter};
 pub use odometer::{OdometerReader, SpeedRecord};
 pub use rtklib::RtklibReader;

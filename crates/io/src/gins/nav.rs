@@ -5,8 +5,8 @@ use std::fs::File;
 use std::io::{BufRead, BufReader, BufWriter, Write};
 use std::path::Path;
 
-use kestrel::nav::nalgebra::Vector3;
-use kestrel::nav::{Euler, Geodetic, NavState};
+use kestrel_nav::nalgebra::Vector3;
+use kestrel_nav::{Euler, Geodetic, NavState};
 
 use super::angle::{degrees_exact, degrees_to_radians};
 use super::line::{open, Lines};
@@ -27,14 +27,15 @@ const NAMES: &[&str] = &[
     "yaw, deg",
 ];
 const LAYOUT: &str = "week, time, lat, lon, h, velocity NED, roll, pitch, yaw";
-pub(crate) const WEEK_SECONDS: f64 = 604_800.0;
+/// Seconds in a GNSS week.
+pub const WEEK_SECONDS: f64 = 604_800.0;
 
 /// One navigation line: the GNSS week and the state (its `time` in seconds
 /// of week).
 ///
 /// ```
 /// use kestrel_io::gins::NavRecord;
-/// use kestrel::nav::{NavState, Geodetic, Euler, nalgebra::Vector3};
+/// use kestrel_nav::{NavState, Geodetic, Euler, nalgebra::Vector3};
 /// let r = NavRecord { week: 2300, state: NavState::new(10.0, Geodetic::new(0.5, 2.0, 0.0),
 ///     Vector3::zeros(), Euler::default()), line: 0 };
 /// assert_eq!(r.state.time, 10.0);
@@ -120,7 +121,7 @@ impl<R: BufRead> Iterator for NavReader<R> {
 ///
 /// ```
 /// use kestrel_io::gins::{NavReader, NavWriter};
-/// use kestrel::nav::{NavState, Geodetic, Euler, nalgebra::Vector3};
+/// use kestrel_nav::{NavState, Geodetic, Euler, nalgebra::Vector3};
 /// let s = NavState::new(0.3, Geodetic::from_degrees(30.5, 114.2, 21.3), Vector3::new(1.0, 2.0, 0.1),
 ///     Euler::from_degrees(1.0, -2.0, 350.0));
 /// let mut w = NavWriter::new(Vec::new());
@@ -198,7 +199,7 @@ impl<W: Write> NavWriter<W> {
 /// [`degrees_exact`](super::degrees_exact).
 ///
 /// ```
-/// use kestrel::nav::{NavState, Geodetic, Euler, nalgebra::Vector3};
+/// use kestrel_nav::{NavState, Geodetic, Euler, nalgebra::Vector3};
 /// let s = NavState::new(1.5, Geodetic::new(0.5, 2.0, 20.0), Vector3::new(1.0, 0.0, 0.0),
 ///     Euler::default());
 /// let mut line = String::new();

@@ -13,9 +13,9 @@ use std::fs::File;
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 
-use kestrel::nav::measurement::GnssFix;
-use kestrel::nav::nalgebra::Vector3;
-use kestrel::nav::Geodetic;
+use kestrel_nav::measurement::GnssFix;
+use kestrel_nav::nalgebra::Vector3;
+use kestrel_nav::Geodetic;
 
 use super::angle::degrees_to_radians;
 use super::line::{open, Lines};

@@ -4,14 +4,14 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use kestrel::nav::measurement::GnssFix;
-use kestrel::nav::nalgebra::Vector3;
-use kestrel::nav::{Euler, Geodetic, NavState};
 use kestrel_io::gins::{
     degrees_exact, degrees_to_radians, last_time, GnssReader, GnssWriter, ImuReader, ImuRecord,
     ImuWriter, NavReader, NavWriter,
 };
 use kestrel_io::InputError;
+use kestrel_nav::measurement::GnssFix;
+use kestrel_nav::nalgebra::Vector3;
+use kestrel_nav::{Euler, Geodetic, NavState};
 
 /// A file in the temporary directory with a name unique to this process
 /// and call.

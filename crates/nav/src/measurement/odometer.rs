@@ -40,7 +40,7 @@ impl OdometerReading {
 /// mounting angles, calibrated parameters: `C_v^b = R_z(yaw_m) R_y(pitch_m)`
 /// (the vehicle's forward axis is the body's pitched up by `pitch_m` and
 /// turned right by `yaw_m`; the simulation's
-/// [`TrajectorySpec::mounting`](crate::sim::TrajectorySpec::mounting) with
+/// `TrajectorySpec::mounting` (in `kestrel-sim`) with
 /// these pitch and yaw), `C_b^v = (C_v^b)ᵀ`. With `C = C_b^n`, `l` the
 /// lever arm from the IMU to the odometer reference point (body, m),
 /// `ω = ω_ib^b` the bias-corrected body rate and `ω_ie` the Earth rate

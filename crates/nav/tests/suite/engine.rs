@@ -13,11 +13,11 @@ use kestrel_nav::engine::{Epoch, ErrorSystem, InitialUncertainty, Ins15, Loosely
 use kestrel_nav::error_model::{ErrorModel15, ForcingMean};
 use kestrel_nav::measurement::{GnssAntenna, GnssFix, InsContext};
 use kestrel_nav::nalgebra::{SMatrix, SVector, Vector3};
-use kestrel_nav::sim::{GnssConfig, GnssSensor, Segment, TimeWindow, TrajectorySpec, Vehicle};
 use kestrel_nav::{
     feedback15, Ellipsoid, Geodetic, ImuBiases, ImuIncrement, ImuSpec, NavError, NavState,
     Strapdown,
 };
+use kestrel_sim::{GnssConfig, GnssSensor, Segment, TimeWindow, TrajectorySpec, Vehicle};
 
 const RATE: f64 = 100.0;
 

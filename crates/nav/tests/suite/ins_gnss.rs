@@ -27,8 +27,8 @@ use kestrel_core::Ekf;
 use kestrel_nav::engine::{ErrorSystem, Ins15, LooselyCoupled};
 use kestrel_nav::measurement::GnssAntenna;
 use kestrel_nav::nalgebra::SVector;
-use kestrel_nav::sim::GnssSensor;
 use kestrel_nav::{Ellipsoid, Geodetic, Strapdown};
+use kestrel_sim::GnssSensor;
 
 const RATE: f64 = 100.0;
 const RUNS: usize = 20;

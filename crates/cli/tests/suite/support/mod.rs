@@ -5,9 +5,9 @@
 
 use std::path::{Path, PathBuf};
 
+use kestrel_app::process::{ProcessReport, WindowKind};
+use kestrel_app::simulate::{simulate, SimulateOptions};
 use kestrel_cli::process::ProcessArgs;
-use kestrel_cli::simulate::{simulate, SimulateArgs};
-use kestrel_io::process::{ProcessReport, WindowKind};
 
 /// A fresh folder in the temporary directory, unique to this process.
 pub fn tmp_dir(prefix: &str, name: &str) -> PathBuf {
@@ -23,7 +23,7 @@ pub fn simulate_file(file: &str, seed: u64, duration: Option<f64>, dir: &Path) {
     let scenario = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../scenarios")
         .join(file);
-    simulate(&SimulateArgs {
+    simulate(&SimulateOptions {
         scenario: scenario.to_string_lossy().into_owned(),
         seed: Some(seed),
         duration,
@@ -55,7 +55,7 @@ pub fn run_args(dir: &Path, config: &str, out: &str, outages: &[&str]) -> Proces
 }
 
 /// The maximum horizontal error in each `--outage` window, in order.
-pub fn max_drift(drift: &[kestrel_io::process::WindowDrift]) -> Vec<f64> {
+pub fn max_drift(drift: &[kestrel_app::process::WindowDrift]) -> Vec<f64> {
     drift
         .iter()
         .filter(|w| w.kind == WindowKind::Outage)

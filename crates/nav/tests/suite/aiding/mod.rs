@@ -3,13 +3,12 @@
 //! per Monte-Carlo run.
 #![allow(dead_code)]
 
-pub mod dr;
 pub mod tactical;
 
 use kestrel_nav::engine::InitialUncertainty;
 use kestrel_nav::nalgebra::{SMatrix, Vector3};
-use kestrel_nav::sim::{Motion, Segment, Trajectory, TrajectorySpec, Vehicle};
 use kestrel_nav::{Ellipsoid, Geodetic, ImuIncrement, NavError, NavState};
+use kestrel_sim::{Motion, Segment, Trajectory, TrajectorySpec, Vehicle};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};

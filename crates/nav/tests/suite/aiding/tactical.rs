@@ -5,8 +5,8 @@
 
 use kestrel_nav::engine::InitialUncertainty;
 use kestrel_nav::nalgebra::Vector3;
-use kestrel_nav::sim::{sensor_rng, GnssConfig, ImuErrors, ImuSensor, SensorStream};
 use kestrel_nav::ImuSpec;
+use kestrel_sim::{sensor_rng, GnssConfig, ImuErrors, ImuSensor, SensorStream};
 
 /// A tactical-grade IMU: 3 °/h gyro bias, 0.15 °/√h ARW, 1 mg
 /// accelerometer bias, 0.1 m/s/√h VRW.

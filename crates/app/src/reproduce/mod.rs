@@ -1,0 +1,298 @@
+//! `reproduce` and `run`: Monte Carlo runs of a scenario's filters,
+//! tables beside the papers' numbers, the consistency check and the
+//! sensitivity study, as a [`Reproduction`] a front end prints, writes
+//! ([`Reproduction::write`]) and draws.
+
+mod consistency;
+mod federated;
+mod metric;
+mod monte_carlo;
+mod paper;
+mod report;
+mod sensitivity;
+mod stats;
+mod table;
+mod window;
+
+use std::path::{Path, PathBuf};
+
+use crate::experiment::PositionAxes;
+use crate::scenario::{tuned, FilterKind, MeasurementKind, Scenario};
+
+pub use consistency::{
+    nees_rows, nees_table, NeesRow, CONSERVATIVE_BELOW, OVERCONFIDENT_ABOVE, SETTLING_SHARE,
+};
+pub use federated::{federated_section, largest_difference, precision_section};
+pub use metric::Metric;
+pub use monte_carlo::{run_monte_carlo, FilterOutcome, MonteCarloPlan, RunOutcome};
+pub use paper::{paper, Paper, PaperRow, PaperTable, PAPERS};
+pub use report::{text_report, write_runs_csv, write_summary_csv, ReportInput};
+pub use sensitivity::{
+    run_study, study_table, write_study_csv, StudyPlan, StudyRow, STUDY_METRICS,
+};
+pub use stats::{quantile, MeanStd, Quartiles};
+pub use table::TextTable;
+pub use window::{Window, WindowError, WindowProbe};
+
+use crate::output::write_epochs_csv;
+use crate::progress::Progress;
+use crate::Error;
+
+/// The most Monte Carlo runs a reproduction accepts.
+pub const MAX_RUNS: usize = 10_000;
+
+/// The most seeds per variant of the sensitivity study.
+pub const MAX_STUDY_RUNS: usize = 1_000;
+
+/// Seeds of the fault-free consistency runs (at most; fewer with fewer
+/// runs).
+pub const CONSISTENCY_RUNS: usize = 5;
+
+/// The most worker threads a reproduction accepts.
+pub const MAX_THREADS: usize = 256;
+
+/// How a scenario is reproduced.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReproduceOptions {
+    /// Monte Carlo runs per filter (1 to [`MAX_RUNS`]); run `i` draws its
+    /// sensor noise from `seed + i`.
+    pub runs: usize,
+    /// Seed of run 0 (`None`: the scenario's own seed).
+    pub seed: Option<u64>,
+    /// Worker threads (0: one per core, at most [`MAX_THREADS`]). The
+    /// results do not depend on it.
+    pub threads: usize,
+    /// Simulate only the first seconds of each run (`None`: all of it).
+    pub duration: Option<f64>,
+    /// Seeds per variant of the sensitivity study (0 skips it; papers
+    /// only).
+    pub study_runs: usize,
+}
+
+impl Default for ReproduceOptions {
+    fn default() -> Self {
+        Self {
+            runs: 20,
+            seed: None,
+            threads: 0,
+            duration: None,
+            study_runs: 10,
+        }
+    }
+}
+
+/// A scenario's reproduction: every run's outcome, the checks and the
+/// study, and the report text made from them.
+#[derive(Clone, Debug)]
+pub struct Reproduction {
+    /// The scenario that was run.
+    pub scenario: Scenario,
+    /// The paper, for a built-in scenario reproduced as a paper.
+    pub paper: Option<&'static Paper>,
+    /// How it was run.
+    pub plan: MonteCarloPlan,
+    /// The outcome per filter, the scenario's first, then the tuned
+    /// configuration's (labels ending in ` (tuned)`).
+    pub outcomes: Vec<FilterOutcome>,
+    /// The sensitivity study's rows (papers only; empty when skipped).
+    pub study: Vec<StudyRow>,
+    /// The text report.
+    pub text: String,
+}
+
+/// Reproduces `scenario`: its Monte Carlo runs, and for a paper also the
+/// tuned configuration, the consistency check and the sensitivity study
+/// of `options.study_runs` seeds per variant; the report text is built
+/// from them.
+///
+/// # Errors
+/// [`Error::Failed`] for options out of range or worker threads that
+/// cannot start. A filter that diverges is reported in the tables, not as
+/// an error.
+pub fn reproduce_scenario(
+    scenario: &Scenario,
+    paper: Option<&'static Paper>,
+    options: &ReproduceOptions,
+    progress: &mut (dyn Progress + Send),
+) -> Result<Reproduction, Error> {
+    if let Some(d) = options.duration
+        && !(d.is_finite() && d > 0.0)
+    {
+        return Err(Error::Failed(format!(
+            "--duration must be a positive number of seconds, got {d}"
+        )));
+    }
+    let plan = MonteCarloPlan {
+        runs: options.runs,
+        seed: options.seed.unwrap_or(scenario.seed),
+        threads: options.threads,
+        duration: options.duration,
+    };
+    let windows: Vec<Window> = paper
+        .map(|p| p.windows.iter().map(|(_, w)| *w).collect())
+        .unwrap_or_default();
+    progress.stage(&format!("scenario {}", scenario.name));
+    let mut outcomes = run_monte_carlo(scenario, &plan, &windows, progress)?;
+    // The configuration with competently tuned baselines, beside the
+    // paper's.
+    let tuned = paper.and_then(|_| tuned(&scenario.name));
+    if let Some(t) = &tuned {
+        let mut more = run_monte_carlo(t, &plan, &windows, progress)?;
+        for o in &mut more {
+            o.label = format!("{} (tuned)", o.label);
+        }
+        outcomes.extend(more);
+    }
+    let mut text = text_report(&ReportInput {
+        scenario,
+        plan: &plan,
+        outcomes: &outcomes,
+        paper,
+    });
+    if scenario.name == "001" && paper.is_some() {
+        text.push_str(&federated_section(&outcomes));
+        text.push_str(&precision_section(scenario, plan.seed, plan.duration));
+    }
+    let mut study = Vec::new();
+    if let Some(p) = paper {
+        let mut configs = vec![("", scenario)];
+        if let Some(t) = &tuned {
+            configs.push((" (tuned)", t));
+        }
+        let seeds = plan.seed
+            ..plan
+                .seed
+                .saturating_add(plan.runs.min(CONSISTENCY_RUNS) as u64);
+        progress.stage(&format!(
+            "scenario {}: consistency check, then the sensitivity study ({} seeds per variant)…",
+            scenario.name, options.study_runs
+        ));
+        let rows = nees_rows(&configs, seeds.clone(), plan.threads, plan.duration)?;
+        text.push_str(&nees_table(&rows, seeds));
+        let study_plan = StudyPlan {
+            runs: options.study_runs,
+            threads: plan.threads,
+            duration: plan.duration,
+        };
+        study = run_study(&scenario.name, &study_plan)?;
+        text.push_str(&study_table(&study));
+        for note in p.notes {
+            text.push_str(&format!("note: {note}\n"));
+        }
+        for note in p.disclosures {
+            text.push_str(&format!("disclosure: {note}\n"));
+        }
+        text.push_str(&format!(
+            "verdict (of the full-length runs and study): {}\n",
+            p.verdict
+        ));
+    }
+    Ok(Reproduction {
+        scenario: scenario.clone(),
+        paper,
+        plan,
+        outcomes,
+        study,
+        text,
+    })
+}
+
+impl Reproduction {
+    /// The report's inputs.
+    pub fn report_input(&self) -> ReportInput<'_> {
+        ReportInput {
+            scenario: &self.scenario,
+            plan: &self.plan,
+            outcomes: &self.outcomes,
+            paper: self.paper,
+        }
+    }
+
+    /// The axes of the position errors (the paper's).
+    pub fn axes(&self) -> PositionAxes {
+        PositionAxes::for_scenario(&self.scenario.name)
+    }
+
+    /// Writes `summary.csv`, `runs.csv`, one `epochs_<filter>.csv` per
+    /// filter (run 0), `sensitivity.csv` (with a study) and `report.txt`
+    /// into `dir` (created if missing); returns the files in that order.
+    ///
+    /// # Errors
+    /// [`Error::Io`] naming a file that cannot be written.
+    pub fn write(&self, dir: &Path) -> Result<Vec<PathBuf>, Error> {
+        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+        let input = self.report_input();
+        let mut files = vec![dir.join("summary.csv"), dir.join("runs.csv")];
+        write_summary_csv(&files[0], &input)?;
+        write_runs_csv(&files[1], &input)?;
+        for o in &self.outcomes {
+            let path = dir.join(format!("epochs_{}.csv", slug(&o.label)));
+            write_epochs_csv(&path, self.axes(), &o.records)?;
+            files.push(path);
+        }
+        if !self.study.is_empty() {
+            let path = dir.join("sensitivity.csv");
+            write_study_csv(&path, &self.study)?;
+            files.push(path);
+        }
+        let report = dir.join("report.txt");
+        std::fs::write(&report, &self.text).map_err(|e| Error::io(&report, e))?;
+        files.push(report);
+        Ok(files)
+    }
+
+    /// The measurement size every filter updates with, for the NIS bound
+    /// (`None` for federated filters, whose locals differ).
+    pub fn nis_dof(&self) -> Option<usize> {
+        nis_dof(&self.scenario)
+    }
+
+    /// The filters that failed in some runs: (label, failed runs, runs).
+    pub fn failures(&self) -> Vec<(&str, usize, usize)> {
+        self.outcomes
+            .iter()
+            .filter_map(|o| {
+                let failed = o.failures().count();
+                (failed > 0).then_some((o.label.as_str(), failed, o.runs.len()))
+            })
+            .collect()
+    }
+}
+
+/// The measurement size every filter of `s` updates with, for the NIS
+/// bound (`None` for federated filters, whose locals differ).
+fn nis_dof(s: &Scenario) -> Option<usize> {
+    let federated = s.filters.iter().any(|k| {
+        matches!(
+            k,
+            FilterKind::FederatedUkf { .. } | FilterKind::FederatedSrUkf { .. }
+        )
+    });
+    if federated {
+        return None;
+    }
+    Some(match s.filter.measurement {
+        MeasurementKind::GnssPositionVelocity => 6,
+        MeasurementKind::AttitudeVelocityPosition => 9,
+        MeasurementKind::OdometerVelocity => 3,
+    })
+}
+
+/// A file-name-safe form of a label: lower case, runs of other characters
+/// replaced by one `-`.
+///
+/// ```
+/// assert_eq!(kestrel_app::reproduce::slug("Sage-Husa+fading"), "sage-husa-fading");
+/// assert_eq!(kestrel_app::reproduce::slug("federated SR-UKF"), "federated-sr-ukf");
+/// ```
+pub fn slug(label: &str) -> String {
+    let mut s = String::new();
+    for c in label.chars() {
+        if c.is_ascii_alphanumeric() {
+            s.push(c.to_ascii_lowercase());
+        } else if !s.ends_with('-') && !s.is_empty() {
+            s.push('-');
+        }
+    }
+    s.trim_end_matches('-').to_string()
+}

@@ -1,0 +1,152 @@
+//! Writing a scenario as a commented file: every value in the unit that
+//! reads best and converts back to exactly the same number.
+
+use std::fmt::Write;
+
+use crate::scenario::Scenario;
+use kestrel::nav::nalgebra::Vector3;
+
+use super::check::key_name;
+use super::units::Unit;
+
+/// The scenario as a scenario file, every key commented; reading it back
+/// gives an equal scenario whenever each value is the conversion of a
+/// decimal number of at most 17 digits in one of the key's units (true of
+/// everything built from decimal constants).
+///
+/// ```
+/// use std::path::Path;
+/// let s = kestrel_app::scenario::scenario_001();
+/// let text = kestrel_app::scenario_file::to_toml(&s);
+/// assert!(text.contains("[[filters]]"));
+/// assert_eq!(kestrel_app::scenario_file::parse(&text, Path::new("x.toml")).unwrap(), s);
+/// ```
+pub fn to_toml(s: &Scenario) -> String {
+    let mut w = Writer::default();
+    super::emit_sections::write(&mut w, s);
+    w.out
+}
+
+/// Accumulates the file text.
+#[derive(Default)]
+pub(super) struct Writer {
+    pub out: String,
+}
+
+/// Column where trailing comments start.
+const COMMENT_COLUMN: usize = 44;
+
+impl Writer {
+    /// A blank line, comment lines, then `[name]` (or `[[name]]`).
+    pub fn table(&mut self, name: &str, array: bool, comment: &str) {
+        self.out.push('\n');
+        for line in comment.lines() {
+            let _ = writeln!(self.out, "# {line}");
+        }
+        if array {
+            let _ = writeln!(self.out, "[[{name}]]");
+        } else {
+            let _ = writeln!(self.out, "[{name}]");
+        }
+    }
+
+    /// `key = value  # comment` with `value` already in TOML syntax.
+    pub fn raw(&mut self, key: &str, value: &str, comment: &str) {
+        let line = format!("{key} = {value}");
+        if comment.is_empty() {
+            let _ = writeln!(self.out, "{line}");
+        } else {
+            let pad = COMMENT_COLUMN.saturating_sub(line.chars().count()).max(1);
+            let _ = writeln!(self.out, "{line}{:pad$}# {comment}", "");
+        }
+    }
+
+    /// A quoted string.
+    pub fn string(&mut self, key: &str, value: &str, comment: &str) {
+        let quoted = toml::Value::String(value.to_string()).to_string();
+        self.raw(key, &quoted, comment);
+    }
+
+    /// A number already in the key's unit.
+    pub fn num(&mut self, key: &str, x: f64, comment: &str) {
+        self.raw(key, &number(x), comment);
+    }
+
+    /// A per-axis SI quantity in the best of `units` (`stem_unit = …`).
+    pub fn quantity(&mut self, stem: &str, units: &[&Unit], v: Vector3<f64>, comment: &str) {
+        let (unit, values) = best(units, &[v.x, v.y, v.z]);
+        let text = if values.iter().all(|x| x.to_bits() == values[0].to_bits()) {
+            number(values[0])
+        } else {
+            format!(
+                "[{}, {}, {}]",
+                number(values[0]),
+                number(values[1]),
+                number(values[2])
+            )
+        };
+        self.raw(&key_name(stem, unit), &text, comment);
+    }
+
+    /// A scalar SI quantity in the best of `units`.
+    pub fn scalar(&mut self, stem: &str, units: &[&Unit], x: f64, comment: &str) {
+        let (unit, values) = best(units, &[x]);
+        self.raw(&key_name(stem, unit), &number(values[0]), comment);
+    }
+}
+
+/// A float in TOML syntax.
+pub(super) fn number(x: f64) -> String {
+    if x.is_infinite() {
+        if x > 0.0 { "inf" } else { "-inf" }.into()
+    } else if x.is_nan() {
+        "nan".into()
+    } else {
+        format!("{x:?}")
+    }
+}
+
+/// The shortest decimal in `unit` that converts to exactly `si`.
+fn decimal(unit: &Unit, si: f64) -> Option<f64> {
+    if si == 0.0 || !si.is_finite() {
+        return ((unit.to_si)(si) == si).then_some(si);
+    }
+    let guess = (unit.from_si)(si);
+    (1..=17).find_map(|digits| {
+        let x: f64 = format!("{guess:.*e}", digits - 1).parse().ok()?;
+        ((unit.to_si)(x).to_bits() == si.to_bits()).then_some(x)
+    })
+}
+
+/// Whether `x` reads well: at most 4 significant digits and, unless zero,
+/// a magnitude in [0.001, 10 000).
+fn reads_well(x: f64) -> bool {
+    let digits = format!("{:e}", x.abs());
+    let mantissa = digits.split('e').next().unwrap_or("");
+    let significant = mantissa.chars().filter(char::is_ascii_digit).count();
+    x == 0.0 || x.is_infinite() || (significant <= 4 && (1e-3..1e4).contains(&x.abs()))
+}
+
+/// The unit to write `si` in, with the values: the first of `units` (they
+/// are in order of preference) whose exact values all read well, else the
+/// exact one with the fewest characters, else the first unit's nearest.
+fn best<'a>(units: &[&'a Unit], si: &[f64]) -> (&'a Unit, Vec<f64>) {
+    let exact: Vec<(&Unit, Vec<f64>)> = units
+        .iter()
+        .filter_map(|u| {
+            let values: Option<Vec<f64>> = si.iter().map(|&x| decimal(u, x)).collect();
+            values.map(|v| (*u, v))
+        })
+        .collect();
+    if let Some((u, v)) = exact.iter().find(|(_, v)| v.iter().all(|&x| reads_well(x))) {
+        return (u, v.clone());
+    }
+    let length = |v: &Vec<f64>| v.iter().map(|&x| number(x).len()).sum::<usize>();
+    match exact.into_iter().min_by_key(|(_, v)| length(v)) {
+        Some(choice) => choice,
+        None => (
+            units[0],
+            si.iter().map(|&x| (units[0].from_si)(x)).collect(),
+        ),
+    }
+}

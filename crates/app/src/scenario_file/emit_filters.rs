@@ -1,0 +1,222 @@
+//! The estimation tables of a written scenario file: `[filter]` and
+//! `[[filters]]`.
+
+use crate::scenario::{ErrorModelKind, FadeBlock, FilterKind, MeasurementKind, Scenario};
+use kestrel::sim::ImuErrors;
+
+use super::emit::{number, Writer};
+use super::emit_sections::decimal_deg;
+use super::emit_sensors::imu_errors;
+use super::units::{ACCEL, ANGLE, GYRO_RATE, RATIO, SI};
+use crate::process::filter_params::{filter_params, Param};
+
+pub(super) fn filter(w: &mut Writer, s: &Scenario) {
+    let f = &s.filter;
+    w.table("filter", false, "What every filter shares.");
+    let (model, tau) = match f.error_model {
+        ErrorModelKind::Ins15 => ("ins15", None),
+        ErrorModelKind::Ins18 => ("ins18", None),
+        ErrorModelKind::Odometer16 { scale_tau } => ("odometer16", Some(scale_tau)),
+        ErrorModelKind::Ins21 { .. } => ("ins21", None),
+    };
+    w.string(
+        "error_model",
+        model,
+        "\"ins15\", \"ins18\" (+ gyro Markov), \"ins21\" (+ IMU scale factors) or \
+         \"odometer16\" (+ odometer scale)",
+    );
+    if let Some(t) = tau {
+        w.num(
+            "odometer_scale_tau_s",
+            t,
+            "odometer scale-error correlation time, s",
+        );
+    }
+    if let ErrorModelKind::Ins21 { scale_tau } = f.error_model
+        && scale_tau.is_finite()
+    {
+        w.num(
+            "scale_tau_s",
+            scale_tau,
+            "IMU scale-factor correlation time, s (omit: random constants)",
+        );
+    }
+    let m = match f.measurement {
+        MeasurementKind::GnssPositionVelocity => "gnss-position-velocity",
+        MeasurementKind::AttitudeVelocityPosition => "attitude-velocity-position",
+        MeasurementKind::OdometerVelocity => "odometer-velocity",
+    };
+    w.string(
+        "measurement",
+        m,
+        "\"gnss-position-velocity\", \"attitude-velocity-position\", \"odometer-velocity\"",
+    );
+    w.quantity(
+        "lever_arm_m",
+        &[&SI],
+        f.lever_arm,
+        "GNSS lever arm the filter uses, body, m",
+    );
+    let mount = f.odometer_mounting.map(|a| number(decimal_deg(a)));
+    w.raw(
+        "odometer_mounting_deg",
+        &format!("[{}, {}]", mount[0], mount[1]),
+        "odometer mounting pitch, yaw the filter uses, °",
+    );
+
+    w.table(
+        "filter.imu",
+        false,
+        "The IMU model the filter assumes (its Q), one number per quantity.",
+    );
+    imu_errors(w, &ImuErrors::from_spec(&f.imu_model));
+
+    let p = &f.p0;
+    w.table(
+        "filter.p0",
+        false,
+        "Initial standard deviations (P0 is diagonal).",
+    );
+    w.quantity(
+        "attitude",
+        &ANGLE,
+        p.attitude,
+        "attitude σ: deg, arcmin or arcsec",
+    );
+    w.quantity("velocity_m_s", &[&SI], p.velocity, "velocity σ, m/s");
+    w.quantity("position_m", &[&SI], p.position, "position σ, m");
+    w.quantity(
+        "gyro_bias",
+        &GYRO_RATE,
+        p.gyro_bias,
+        "gyro (constant) bias σ, °/h",
+    );
+    w.quantity(
+        "gyro_markov",
+        &GYRO_RATE,
+        p.gyro_markov,
+        "gyro Markov drift σ (ins18), °/h",
+    );
+    w.quantity(
+        "accel_bias",
+        &ACCEL,
+        p.accel_bias,
+        "accelerometer bias σ: µg or mg",
+    );
+    w.scalar(
+        "odometer_scale",
+        &RATIO,
+        p.odometer_scale,
+        "odometer scale σ (odometer16): ppm or %",
+    );
+    if matches!(f.error_model, ErrorModelKind::Ins21 { .. }) {
+        w.quantity(
+            "gyro_scale",
+            &RATIO,
+            p.gyro_scale,
+            "gyro scale-factor σ (ins21): ppm or %",
+        );
+        w.quantity(
+            "accel_scale",
+            &RATIO,
+            p.accel_scale,
+            "accelerometer scale-factor σ (ins21): ppm or %",
+        );
+    }
+
+    let r = &f.r;
+    w.table(
+        "filter.r",
+        false,
+        "Measurement noise σ the filters assume (R; omit what is not measured).",
+    );
+    if let Some(v) = r.position {
+        w.quantity("position_m", &[&SI], v, "position σ north, east, down, m");
+    }
+    if let Some(v) = r.velocity {
+        w.quantity("velocity_m_s", &[&SI], v, "velocity σ, m/s");
+    }
+    if let Some(v) = r.attitude {
+        w.quantity("attitude", &ANGLE, v, "attitude σ: deg, arcmin or arcsec");
+    }
+    if let Some(v) = r.odometer {
+        w.quantity(
+            "odometer_m_s",
+            &[&SI],
+            v,
+            "odometer velocity-matching σ, m/s",
+        );
+    }
+}
+
+pub(super) fn filter_entry(w: &mut Writer, f: &FilterKind) {
+    w.table("filters", true, &format!("Filter \"{}\".", f.label()));
+    let (kind, what) = kind_name(f);
+    w.string("kind", kind, what);
+    for p in filter_params(f) {
+        match p {
+            Param::Number("threshold", v) => {
+                w.num("threshold_m_s", v, "|v_INS − v_odometer| limit, m/s, > 0")
+            }
+            Param::Number(key, v) => w.num(key, v, comment(f, key)),
+            Param::Window(n) => w.raw(
+                "window",
+                &n.to_string(),
+                "innovations in the R window: 10, 20 or 50",
+            ),
+            Param::Fade(states) => fade(w, states),
+        }
+    }
+}
+
+/// The `kind` value of a filter and what it is.
+fn kind_name(f: &FilterKind) -> (&'static str, &'static str) {
+    match f {
+        FilterKind::Standard => ("standard", "no adaptation"),
+        FilterKind::SageHusaFading { .. } => ("sage-husa-fading", "Sage-Husa R + fading memory"),
+        FilterKind::ImprovedAdaptive { .. } => {
+            ("improved-adaptive", "Sage-Husa + fading + χ² compression")
+        }
+        FilterKind::FederatedUkf { .. } => {
+            ("federated-ukf", "federated: local GNSS KF + local UKF")
+        }
+        FilterKind::FederatedSrUkf { .. } => {
+            ("federated-sr-ukf", "federated with the square-root UKF")
+        }
+        FilterKind::IctErekf { .. } => ("ict-erekf", "innovation χ² tests + robust R inflation"),
+        FilterKind::MaxThreshold { .. } => {
+            ("max-threshold", "isolate the odometer on a speed mismatch")
+        }
+        FilterKind::FuzzyAdaptive { .. } => ("fuzzy-adaptive", "fuzzy odometer gain + windowed R"),
+        FilterKind::StrongTrackingFading { .. } => {
+            ("strong-tracking-fading", "suboptimal fading factor")
+        }
+    }
+}
+
+/// The comment of the numeric parameter `key` of `f`.
+fn comment(f: &FilterKind, key: &str) -> &'static str {
+    let strong_tracking = matches!(f, FilterKind::StrongTrackingFading { .. });
+    match key {
+        "forgetting" => "Sage-Husa forgetting factor b, (0, 1]",
+        "reserve" => "reserve coefficient γ of the divergence test, ≥ 1",
+        "lambda_max" if strong_tracking => "upper clamp of λ, ≥ 1 (inf: none)",
+        "lambda_max" => "upper clamp of the fading factor λ, ≥ 1 (inf: none)",
+        "significance" if matches!(f, FilterKind::IctErekf { .. }) => "α of the tests, (0, 0.5)",
+        "significance" => "α of the χ² compression threshold, (0, 0.5)",
+        "alpha" => "sigma-point spread α, (0, 1]",
+        "beta" => "prior-knowledge β (2: Gaussian), ≥ 0",
+        "kappa" => "secondary scaling κ",
+        "rho" => "forgetting factor ρ of the innovation covariance, (0, 1]",
+        "softening" => "softening β on R, ≥ 1",
+        _ => "",
+    }
+}
+
+fn fade(w: &mut Writer, states: FadeBlock) {
+    w.string(
+        "fade_states",
+        states.name(),
+        "states the fade scales: \"all\" (papers), \"velocity-position\", \"attitude-velocity-position\"",
+    );
+}

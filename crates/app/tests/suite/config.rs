@@ -1,0 +1,241 @@
+//! The processing configuration: the shipped example, and the parameter
+//! ranges against the filters'.
+
+use std::path::Path;
+
+use kestrel_app::scenario::FilterKind;
+
+#[test]
+fn the_shipped_example_configuration_is_valid() {
+    use kestrel_app::process::config::{load, GnssNoise};
+    use kestrel_app::process::units::{deg_per_h, deg_per_sqrt_h, m_s_per_sqrt_h, ug};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/process-example.toml");
+    let s = load(&path).unwrap();
+    assert_eq!((s.week, s.start.time), (2300, 356_400.0));
+    assert_eq!(s.start.pos.lat, 30.5278f64.to_radians());
+    assert_eq!(s.kind, FilterKind::IctErekf { significance: 0.05 });
+    assert_eq!(s.imu.gyro_arw, deg_per_sqrt_h(0.2));
+    assert_eq!(s.imu.accel_vrw, m_s_per_sqrt_h(0.1));
+    assert_eq!(s.p0.gyro_bias.x, deg_per_h(10.0));
+    assert_eq!(s.p0.accel_bias.z, ug(500.0));
+    assert_eq!(s.imu.gyro_markov_tau, f64::INFINITY);
+    assert_eq!(s.lever_arm.z, -0.8);
+    assert!(matches!(s.gnss_noise, GnssNoise::Fixed { .. }));
+    assert!(s.odometer.is_none());
+    assert_eq!(s.output_interval, 0.0);
+}
+
+/// Every filter parameter the configuration takes has exactly the range its
+/// filter accepts: a value is refused by the file if and only if building
+/// the filter with it fails.
+#[test]
+fn filter_parameter_ranges_equal_the_filters_ranges() {
+    use kestrel_app::experiment::build_filter;
+    use kestrel_app::process::config::parse;
+    let base = "[initial]\ntime = 0\nposition = [30, 114, 20]\nattitude = [0, 0, 0]\n\
+                [initial.std]\nattitude = [1, 1, 1]\nvelocity = [1, 1, 1]\nposition = [1, 1, 1]\n";
+    let values = [
+        "-1.0", "0.0", "0.005", "0.01", "0.05", "0.15", "0.2", "0.97", "1.0", "1.5", "100.0",
+        "inf", "nan",
+    ];
+    let params = [
+        ("ict-erekf", "significance"),
+        ("improved-adaptive", "significance"),
+        ("improved-adaptive", "forgetting"),
+        ("improved-adaptive", "reserve"),
+        ("improved-adaptive", "lambda_max"),
+        ("sage-husa-fading", "forgetting"),
+        ("sage-husa-fading", "reserve"),
+        ("sage-husa-fading", "lambda_max"),
+        ("fading", "rho"),
+        ("fading", "softening"),
+        ("fading", "lambda_max"),
+    ];
+    let mut refused = 0;
+    for (kind, key) in params {
+        for v in values {
+            let text = format!("{base}[filter]\nkind = \"{kind}\"\n{key} = {v}\n");
+            let parsed = parse(&text, "p.toml".as_ref());
+            // The same kind with the parameter set directly in the library.
+            let x: f64 = v.parse().unwrap();
+            let direct = with_param(kind, key, x);
+            let built = build_filter::<6, _>(&direct, Probe).is_ok();
+            assert_eq!(parsed.is_ok(), built, "{kind} {key} = {v}");
+            if let Err(e) = parsed {
+                refused += 1;
+                let e = e.to_string();
+                assert!(
+                    e.starts_with(&format!("p.toml: key `filter.{key}`: expected ")),
+                    "{e}"
+                );
+            }
+        }
+    }
+    // Some values of every parameter are refused, most are accepted.
+    assert!(refused > 30 && refused < 100, "{refused}");
+}
+
+/// `kind` with its defaults and `key = x`.
+fn with_param(kind: &str, key: &str, x: f64) -> FilterKind {
+    use kestrel_app::scenario::FadeBlock;
+    let p = |k: &str, d: f64| if k == key { x } else { d };
+    match kind {
+        "ict-erekf" => FilterKind::IctErekf {
+            significance: p("significance", 0.05),
+        },
+        "improved-adaptive" => FilterKind::ImprovedAdaptive {
+            forgetting: p("forgetting", 0.97),
+            reserve: p("reserve", 1.0),
+            lambda_max: p("lambda_max", 10.0),
+            significance: p("significance", 0.05),
+            fade_states: FadeBlock::All,
+        },
+        "sage-husa-fading" => FilterKind::SageHusaFading {
+            forgetting: p("forgetting", 0.97),
+            reserve: p("reserve", 1.0),
+            lambda_max: p("lambda_max", 10.0),
+            fade_states: FadeBlock::All,
+        },
+        _ => FilterKind::StrongTrackingFading {
+            rho: p("rho", 0.95),
+            softening: p("softening", 1.0),
+            lambda_max: p("lambda_max", f64::INFINITY),
+            fade_states: FadeBlock::All,
+        },
+    }
+}
+
+/// A filter loop that only builds the filter.
+struct Probe;
+
+impl kestrel_app::experiment::FilterLoop<6> for Probe {
+    type Output = ();
+    fn odometer_model(&self) -> bool {
+        false
+    }
+    fn gnss<A>(self, _: A, _: kestrel_app::scenario::FadeBlock)
+    where
+        A: kestrel::adapter::PriorAdapter<f64>
+            + kestrel::adapter::NoiseAdapter<f64, 6, Report: kestrel_app::experiment::Describe>,
+    {
+    }
+    fn odometer<P: kestrel_app::experiment::OdometerProcessing>(self, _: P) {}
+}
+
+/// The datasheet units of the noise densities and the bias models, the
+/// ground-vehicle tables and the 21-state keys, converted to SI; and the
+/// combinations that make no sense refused with the key.
+#[test]
+fn datasheet_units_bias_models_and_constraints() {
+    use kestrel_app::process::config::parse;
+    use kestrel_app::process::units::{deg_per_h, ug};
+    use kestrel_app::scenario::ErrorModelKind;
+    let base = "[initial]\ntime = 0\nposition = [30, 114, 20]\nattitude = [0, 0, 0]\n\
+                gyro_scale = [100, 0, -50]\n\
+                [initial.std]\nattitude = [1, 1, 1]\nvelocity = [1, 1, 1]\nposition = [1, 1, 1]\n";
+    // 0.01 °/s/√Hz = 0.01 °/√s = 0.6 °/√h; 6 °/h/√h = 0.1 °/h/√s.
+    let text = format!(
+        "{base}gyro_scale = [300, 300, 300]\naccel_scale = [200, 200, 200]\n\
+         [imu]\ngyro_arw_deg_per_s_per_sqrt_hz = 0.01\ngyro_bias_rw = 6.0\naccel_bias_rw = 60.0\n\
+         scale_tau = 3600\n\
+         [filter]\nerror_model = \"ins21\"\n\
+         [nhc]\nrate = 5\nstd = [0.2, 0.3]\nmounting = [1.0, -2.0]\n\
+         [zupt]\naccel_std = 0.05\ngyro_std = 0.2\nrate = 10\nvelocity_std = 0.01\n"
+    );
+    let s = parse(&text, "p.toml".as_ref()).unwrap();
+    assert!((s.imu.gyro_arw - 0.01f64.to_radians()).abs() < 1e-18);
+    assert!((s.imu.gyro_bias_rw - deg_per_h(6.0) / 60.0).abs() < 1e-20);
+    assert!((s.imu.accel_bias_rw - ug(60.0) / 60.0).abs() < 1e-20);
+    assert_eq!(s.error_model, ErrorModelKind::Ins21 { scale_tau: 3600.0 });
+    assert!((s.imu.gyro_scale - 300e-6).abs() < 1e-15);
+    assert!((s.p0.accel_scale.y - 200e-6).abs() < 1e-15);
+    assert!((s.initial_imu.gyro_scale.z + 50e-6).abs() < 1e-18);
+    let n = s.nhc.unwrap();
+    assert_eq!((n.rate, n.std), (5.0, [0.2, 0.3]));
+    assert!((n.mounting[1] + 2f64.to_radians()).abs() < 1e-15);
+    let z = s.zupt.unwrap();
+    assert_eq!((z.window, z.max_speed, z.angular_rate_std), (1.0, 0.5, 0.0));
+    assert!((z.gyro_std - 0.2f64.to_radians()).abs() < 1e-15);
+
+    let refused = [
+        (
+            "[imu]\ngyro_arw = 0.1\ngyro_arw_deg_per_s_per_sqrt_hz = 0.01\n",
+            "imu.gyro_arw_deg_per_s_per_sqrt_hz",
+            "give either gyro_arw or gyro_arw_deg_per_s_per_sqrt_hz",
+        ),
+        (
+            "[imu]\ngyro_markov_sigma = 1\ngyro_markov_tau = 100\ngyro_bias_rw = 1\n",
+            "imu.gyro_bias_rw",
+            "one bias model per sensor: a Gauss-Markov process (`*_markov_sigma`) or a random \
+             walk, not both",
+        ),
+        (
+            "[zupt]\naccel_std = 0.05\ngyro_std = 0.2\nrate = 10\nvelocity_std = 0.01\nmax_speed = 0\n",
+            "zupt.max_speed",
+            "expected a finite value > 0, found 0",
+        ),
+        (
+            "[zupt]\naccel_std = 0.05\ngyro_std = 0.2\nrate = 1e308\nvelocity_std = 0.01\n",
+            "zupt.rate",
+            "expected an update rate in [0, 10000] Hz, found 1e308",
+        ),
+        (
+            "[zupt]\nwindow = 1e308\naccel_std = 0.05\ngyro_std = 0.2\nrate = 10\nvelocity_std = 0.01\n",
+            "zupt.window",
+            "expected a duration in [0, 3600] s, found 1e308",
+        ),
+        (
+            "[alignment]\nstatic_time = 1e308\nyaw = \"gnss-course\"\n",
+            "alignment.static_time",
+            "expected a duration in [0, 86400] s, found 1e308",
+        ),
+        (
+            "[nhc]\nrate = nan\nstd = [0.1, 0.1]\n",
+            "nhc.rate",
+            "expected a finite value > 0, found NaN",
+        ),
+        (
+            "[nhc]\nrate = 10\nstd = [0.1, 0.0]\n",
+            "nhc.std[1]",
+            "expected a standard deviation > 0 whose square in SI units is a normal double \
+             (neither 0 nor infinite), found 0",
+        ),
+    ];
+    for (extra, key, message) in refused {
+        let e = parse(&format!("{base}{extra}"), "p.toml".as_ref())
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, format!("p.toml: key `{key}`: {message}"), "{extra}");
+    }
+}
+
+/// The max-threshold baseline takes an optional R window (the fuzzy
+/// filter's lengths only), named in the error when refused.
+#[test]
+fn max_threshold_takes_an_optional_r_window() {
+    use kestrel_app::process::config::parse;
+    let base = "[initial]\ntime = 0\nposition = [30, 114, 20]\nattitude = [0, 0, 0]\n\
+                [initial.std]\nattitude = [1, 1, 1]\nvelocity = [1, 1, 1]\nposition = [1, 1, 1]\n\
+                [odometer]\nrate = 10.0\nspeed_std = 0.1\nnhc_std = 0.1\nscale_tau = 3600.0\nscale_sigma = 0.001\nmounting = [0.0, 0.0]\nlever_arm = [0.0, 0.0, 0.0]\n\
+                [filter]\nerror_model = \"odometer16\"\nkind = \"max-threshold\"\nthreshold = 0.5\n";
+    let kind = |extra: &str| parse(&format!("{base}{extra}"), "p.toml".as_ref()).map(|s| s.kind);
+    assert_eq!(
+        kind("").unwrap(),
+        FilterKind::MaxThreshold {
+            threshold: 0.5,
+            r_window: None
+        }
+    );
+    assert_eq!(
+        kind("window = 20\n").unwrap(),
+        FilterKind::MaxThreshold {
+            threshold: 0.5,
+            r_window: Some(20)
+        }
+    );
+    let e = kind("window = 30\n").unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "p.toml: key `filter.window`: expected 10, 20 or 50, found 30"
+    );
+}
