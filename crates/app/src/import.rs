@@ -16,7 +16,7 @@ use std::path::Path;
 
 use yaml_rust2::{Yaml, YamlLoader};
 
-use crate::process::units::{deg_per_h, ug};
+use crate::config::units::{DEG_PER_H, UG};
 use crate::{Error, InputError};
 use kestrel_io::gins::invert_exact;
 
@@ -223,7 +223,7 @@ pub fn kf_gins(text: &str, path: &Path, out: Option<&Path>) -> Result<Imported, 
         Some(_) => r.vec3("initbastd")?,
         None => [abstd; 3],
     };
-    let ug_of = |m: f64| invert_exact(mgal(m), mgal(m) / ug(1.0), ug);
+    let ug_of = |m: f64| invert_exact(mgal(m), mgal(m) / UG.si(1.0), UG.to_si);
     let _ = writeln!(t, "[initial.std]");
     let _ = writeln!(
         t,
@@ -292,7 +292,7 @@ pub fn kf_gins(text: &str, path: &Path, out: Option<&Path>) -> Result<Imported, 
     let _ = writeln!(
         t,
         "gyro_markov_sigma = {:?}   # imunoise.gbstd (deg/h)",
-        invert_exact(deg_per_h(gbstd), gbstd, deg_per_h)
+        invert_exact(DEG_PER_H.si(gbstd), gbstd, DEG_PER_H.to_si)
     );
     let _ = writeln!(
         t,

@@ -39,6 +39,7 @@
 
 #![deny(missing_docs)]
 
+pub mod config;
 pub mod demo;
 pub mod experiment;
 pub mod import;
@@ -47,7 +48,7 @@ pub mod process;
 pub mod progress;
 pub mod reproduce;
 pub mod scenario;
-pub mod scenario_file;
+
 pub mod simulate;
 
 pub use kestrel_io::{Error, InputError, Location};

@@ -125,7 +125,7 @@ fn write_study(mc: &MonteCarloArgs, study: &[StudyRow]) -> Result<(), CliError> 
 /// # Errors
 /// As [`reproduce`], and [`CliError::Input`] for a bad scenario file.
 pub fn run_file(args: &RunArgs) -> Result<(), CliError> {
-    let scenario = kestrel_app::scenario_file::load(&args.scenario)?;
+    let scenario = kestrel_app::config::scenario::load(&args.scenario)?;
     let options = args.monte_carlo.options(0);
     execute(&scenario, None, &args.monte_carlo, &options).map(|_| ())
 }

@@ -5,6 +5,11 @@ pub const G0: f64 = 9.806_65;
 
 const DEG_PER_H: f64 = std::f64::consts::PI / 180.0 / 3600.0;
 
+/// One µg in m/s², rounded once: a value in µg converts with a single
+/// rounding, so every decimal in m/s² has a µg value that converts to it
+/// exactly (15 mGal = 1.5e-4 m/s² is 15.295743194668921 µg).
+const UG: f64 = 1e-6 * G0;
+
 /// IMU error magnitudes (all 1σ, SI units), per axis, identical on the three
 /// axes.
 ///
@@ -125,7 +130,7 @@ impl ImuSpec {
     /// assert!((s.accel_bias - 100e-6 * 9.80665).abs() < 1e-18);
     /// ```
     pub const fn with_accel_bias_ug(mut self, ug: f64) -> Self {
-        self.accel_bias = ug * 1e-6 * G0;
+        self.accel_bias = ug * UG;
         self
     }
 
@@ -171,7 +176,7 @@ impl ImuSpec {
     /// assert!((s.accel_markov_sigma - 50e-6 * 9.80665).abs() < 1e-18);
     /// ```
     pub const fn with_accel_markov_ug(mut self, sigma_ug: f64, tau_s: f64) -> Self {
-        self.accel_markov_sigma = sigma_ug * 1e-6 * G0;
+        self.accel_markov_sigma = sigma_ug * UG;
         self.accel_markov_tau = tau_s;
         self
     }

@@ -29,8 +29,8 @@ use std::path::Path;
 use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::{Euler, ImuIncrement, NavState};
 
-use super::config::{AlignmentSettings, Settings, YawSource};
 use super::pipeline::GnssInput;
+use crate::config::process::{AlignmentSettings, Settings, YawSource};
 use crate::{Error, InputError};
 use kestrel_io::gins::ImuReader;
 

@@ -5,8 +5,8 @@ use kestrel::nav::measurement::Odometer;
 use kestrel::nav::nalgebra::Vector2;
 use kestrel::nav::standstill::StandstillDetector;
 
-use super::config::{NhcSettings, ZuptSettings};
 use super::schedule::Schedule;
+use crate::config::process::{NhcSettings, ZuptSettings};
 
 /// What the constraints did over a run.
 ///

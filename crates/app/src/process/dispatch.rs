@@ -16,8 +16,8 @@ use kestrel::nav::odometer::{InsOdometer16, ScaleFactorProcess};
 use kestrel::nav::Strapdown;
 use kestrel::{Ekf, FilterError, LinearizedProcess};
 
-use super::config::{OdometerSettings, Settings};
 use super::pipeline::{drive, Job};
+use crate::config::process::{OdometerSettings, Settings};
 use crate::Error;
 
 /// What the GNSS file holds.

@@ -17,10 +17,10 @@ use std::path::{Path, PathBuf};
 use crate::experiment::{Adaptation, EpochRecord, PositionAxes};
 use kestrel::nav::{Ellipsoid, Geodetic, NavError, NavState};
 
-use super::config::TruthFormat;
 use super::consistency::Consistency;
 use super::drift::DriftTable;
 use super::stats::Accumulator;
+use crate::config::process::TruthFormat;
 use crate::output::EpochCsvWriter;
 use crate::{Error, InputError};
 use kestrel::nav::nalgebra::{SMatrix, UnitQuaternion, Vector3};

@@ -12,14 +12,13 @@
 //! `kestrel simulate` gives the same errors as the in-memory run.
 
 mod alignment;
-pub mod config;
+
 mod consistency;
 mod constraints;
 mod dispatch;
 mod divergence;
 mod drift;
 mod evaluation;
-pub mod filter_params;
 mod outage;
 mod pipeline;
 
@@ -30,7 +29,6 @@ mod state_files;
 mod stats;
 pub mod timing;
 mod traces;
-pub mod units;
 
 use std::path::{Path, PathBuf};
 
@@ -40,9 +38,9 @@ use crate::scenario::FilterKind;
 use crate::{Error, InputError};
 use kestrel_io::gins::{last_time, ImuReader, OdometerReader};
 
+pub use crate::config::process::Settings;
 pub use crate::progress::{Progress, Silent};
 pub use alignment::AlignmentReport;
-pub use config::Settings;
 pub use consistency::{chi_square_band, Consistency};
 pub use constraints::ConstraintCounts;
 pub use drift::{gap_threshold, WindowDrift, WindowKind};
@@ -248,7 +246,7 @@ pub struct ProcessReport {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed, Error> {
-    let mut settings = config::load(&inputs.config)?;
+    let mut settings = crate::config::process::load(&inputs.config)?;
     let alignment = match settings.alignment {
         Some(a) => Some(alignment::align(
             &inputs.imu,

@@ -14,12 +14,12 @@ use kestrel::nav::measurement::{
 };
 use kestrel::FilterError;
 
-use super::config::GnssFormat;
 use super::divergence::{describe, Step};
 use super::outage::Outage;
 use super::schedule::Schedule;
 use super::sink::Sink;
 use super::timing::{ImuTiming, TimingReport, TimingRule, NOMINAL_SAMPLES};
+use crate::config::process::GnssFormat;
 use crate::{Error, InputError};
 use kestrel_io::gins::{
     GnssReader, ImuReader, ImuRecord, OdometerReader, RtklibReader, SpeedRecord,

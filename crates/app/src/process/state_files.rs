@@ -30,8 +30,8 @@ use super::evaluation::Thinned;
 use super::schedule::Schedule;
 use super::sink::{create_partial, settle};
 use super::traces::StateRow;
-use super::units::G0;
 use crate::Error;
+use kestrel::nav::imu_spec::G0;
 
 /// One table written twice: space-separated text with a `#` header, and
 /// CSV.

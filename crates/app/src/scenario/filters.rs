@@ -160,6 +160,237 @@ impl FadeBlock {
 }
 
 impl FilterKind {
+    /// Every kind's name in configuration files, in the order of the enum.
+    pub const NAMES: [&'static str; 9] = [
+        "ekf",
+        "sage-husa-fading",
+        "improved-adaptive",
+        "federated-ukf",
+        "federated-sr-ukf",
+        "ict-erekf",
+        "max-threshold",
+        "fuzzy-adaptive",
+        "strong-tracking-fading",
+    ];
+
+    /// The name a file uses for `name`: one of [`NAMES`](Self::NAMES), or
+    /// the earlier spellings `standard` (for `ekf`) and `fading` (for
+    /// `strong-tracking-fading`).
+    ///
+    /// ```
+    /// use kestrel_app::scenario::FilterKind;
+    /// assert_eq!(FilterKind::canonical_name("standard"), Some("ekf"));
+    /// assert_eq!(FilterKind::canonical_name("kalman"), None);
+    /// ```
+    pub fn canonical_name(name: &str) -> Option<&'static str> {
+        match name {
+            "standard" => Some("ekf"),
+            "fading" => Some("strong-tracking-fading"),
+            _ => Self::NAMES.iter().copied().find(|n| *n == name),
+        }
+    }
+
+    /// The kind's name in configuration files.
+    ///
+    /// ```
+    /// use kestrel_app::scenario::FilterKind;
+    /// assert_eq!(FilterKind::IctErekf { significance: 0.05 }.name(), "ict-erekf");
+    /// ```
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Standard => "ekf",
+            Self::SageHusaFading { .. } => "sage-husa-fading",
+            Self::ImprovedAdaptive { .. } => "improved-adaptive",
+            Self::FederatedUkf { .. } => "federated-ukf",
+            Self::FederatedSrUkf { .. } => "federated-sr-ukf",
+            Self::IctErekf { .. } => "ict-erekf",
+            Self::MaxThreshold { .. } => "max-threshold",
+            Self::FuzzyAdaptive { .. } => "fuzzy-adaptive",
+            Self::StrongTrackingFading { .. } => "strong-tracking-fading",
+        }
+    }
+
+    /// What the kind is, in a few words (the comment beside `kind` in
+    /// written files).
+    pub fn summary(&self) -> &'static str {
+        match self {
+            Self::Standard => "closed-loop error-state EKF, no adaptation",
+            Self::SageHusaFading { .. } => "Sage-Husa R + fading memory",
+            Self::ImprovedAdaptive { .. } => "Sage-Husa + fading + χ² compression",
+            Self::FederatedUkf { .. } => "federated: local GNSS KF + local UKF",
+            Self::FederatedSrUkf { .. } => "federated with the square-root UKF",
+            Self::IctErekf { .. } => "innovation χ² tests + robust R inflation",
+            Self::MaxThreshold { .. } => "isolate the odometer on a speed mismatch",
+            Self::FuzzyAdaptive { .. } => "fuzzy odometer gain + windowed R",
+            Self::StrongTrackingFading { .. } => "suboptimal (strong-tracking) fading factor",
+        }
+    }
+
+    /// The kind named `name` (canonical, see
+    /// [`canonical_name`](Self::canonical_name)) with its parameters from
+    /// `p`: each parameter is asked for once, with its default.
+    ///
+    /// A name that is not one of [`NAMES`](Self::NAMES) gives
+    /// [`Standard`](Self::Standard): callers look names up first
+    /// ([`canonical_name`](Self::canonical_name)).
+    ///
+    /// # Errors
+    /// The key path and message of a parameter of the wrong type.
+    pub fn from_params(
+        name: &str,
+        p: &mut crate::config::filter::ParamReader<'_>,
+    ) -> Result<Self, (String, String)> {
+        Ok(match name {
+            "sage-husa-fading" => Self::SageHusaFading {
+                forgetting: p.number("forgetting", 0.97)?,
+                reserve: p.number("reserve", 1.0)?,
+                lambda_max: p.number("lambda_max", 10.0)?,
+                fade_states: p.fade_states("fade_states")?,
+            },
+            "improved-adaptive" => Self::ImprovedAdaptive {
+                forgetting: p.number("forgetting", 0.97)?,
+                reserve: p.number("reserve", 1.0)?,
+                lambda_max: p.number("lambda_max", 10.0)?,
+                significance: p.number("significance", 0.05)?,
+                fade_states: p.fade_states("fade_states")?,
+            },
+            "federated-ukf" => Self::FederatedUkf {
+                alpha: p.number("alpha", 1e-3)?,
+                beta: p.number("beta", 2.0)?,
+                kappa: p.number("kappa", 0.0)?,
+            },
+            "federated-sr-ukf" => Self::FederatedSrUkf {
+                alpha: p.number("alpha", 1e-3)?,
+                beta: p.number("beta", 2.0)?,
+                kappa: p.number("kappa", 0.0)?,
+            },
+            "ict-erekf" => Self::IctErekf {
+                significance: p.number("significance", 0.05)?,
+            },
+            "max-threshold" => Self::MaxThreshold {
+                threshold: p.number_or("threshold_m_s", "threshold", 1.0)?,
+                r_window: p.window("window", None)?,
+            },
+            "fuzzy-adaptive" => Self::FuzzyAdaptive {
+                window: p.window("window", Some(20))?.unwrap_or(20),
+            },
+            "strong-tracking-fading" => Self::StrongTrackingFading {
+                rho: p.number("rho", 0.95)?,
+                softening: p.number("softening", 1.0)?,
+                lambda_max: p.number("lambda_max", f64::INFINITY)?,
+                fade_states: p.fade_states("fade_states")?,
+            },
+            _ => Self::Standard,
+        })
+    }
+
+    /// The kind's parameters in the order files write them, each with the
+    /// comment writers put beside it.
+    ///
+    /// ```
+    /// use kestrel_app::scenario::FilterKind;
+    /// assert!(FilterKind::Standard.params().is_empty());
+    /// let p = FilterKind::IctErekf { significance: 0.05 }.params();
+    /// assert_eq!((p[0].key, p[0].value.to_string()), ("significance", "0.05".to_string()));
+    /// ```
+    pub fn params(&self) -> Vec<Param> {
+        use ParamValue::{Fade, Number, Window};
+        let n = |key, x| Param::new(key, Number(x));
+        match *self {
+            Self::Standard => vec![],
+            Self::SageHusaFading {
+                forgetting,
+                reserve,
+                lambda_max,
+                fade_states,
+            } => vec![
+                n("forgetting", forgetting),
+                n("reserve", reserve),
+                n("lambda_max", lambda_max),
+                Param::new("fade_states", Fade(fade_states)),
+            ],
+            Self::ImprovedAdaptive {
+                forgetting,
+                reserve,
+                lambda_max,
+                significance,
+                fade_states,
+            } => vec![
+                n("forgetting", forgetting),
+                n("reserve", reserve),
+                n("lambda_max", lambda_max),
+                n("significance", significance),
+                Param::new("fade_states", Fade(fade_states)),
+            ],
+            Self::FederatedUkf { alpha, beta, kappa }
+            | Self::FederatedSrUkf { alpha, beta, kappa } => {
+                vec![n("alpha", alpha), n("beta", beta), n("kappa", kappa)]
+            }
+            Self::IctErekf { significance } => vec![Param {
+                comment: "significance α of the χ² tests, [0.01, 0.15]",
+                ..n("significance", significance)
+            }],
+            Self::MaxThreshold {
+                threshold,
+                r_window,
+            } => {
+                let mut p = vec![n("threshold_m_s", threshold)];
+                p.extend(r_window.map(|w| Param::new("window", Window(w))));
+                p
+            }
+            Self::FuzzyAdaptive { window } => vec![Param::new("window", Window(window))],
+            Self::StrongTrackingFading {
+                rho,
+                softening,
+                lambda_max,
+                fade_states,
+            } => vec![
+                n("rho", rho),
+                n("softening", softening),
+                n("lambda_max", lambda_max),
+                Param::new("fade_states", Fade(fade_states)),
+            ],
+        }
+    }
+
+    /// The first parameter outside the range this module states for it
+    /// (parameters the filter's constructor checks are left to it): the
+    /// key, the range, the value.
+    pub fn out_of_range(&self) -> Option<(&'static str, &'static str, f64)> {
+        match *self {
+            Self::FederatedUkf { alpha, beta, kappa }
+            | Self::FederatedSrUkf { alpha, beta, kappa } => {
+                if !(alpha > 0.0 && alpha <= 1.0) {
+                    Some(("alpha", "0 < alpha ≤ 1", alpha))
+                } else if !(beta >= 0.0 && beta.is_finite()) {
+                    Some(("beta", "a finite beta ≥ 0", beta))
+                } else if !kappa.is_finite() {
+                    Some(("kappa", "a finite kappa", kappa))
+                } else {
+                    None
+                }
+            }
+            Self::MaxThreshold { threshold, .. } if !(threshold > 0.0 && threshold.is_finite()) => {
+                Some(("threshold_m_s", "a finite threshold > 0 m/s", threshold))
+            }
+            _ => None,
+        }
+    }
+
+    /// Whether the kind is a federated filter (paper 001's; they run their
+    /// own loop, not the engine's).
+    pub fn is_federated(&self) -> bool {
+        matches!(
+            self,
+            Self::FederatedUkf { .. } | Self::FederatedSrUkf { .. }
+        )
+    }
+
+    /// Whether the kind processes odometer readings (paper 003's).
+    pub fn is_odometer(&self) -> bool {
+        matches!(self, Self::MaxThreshold { .. } | Self::FuzzyAdaptive { .. })
+    }
+
     /// A short label for tables and plots.
     ///
     /// ```
@@ -177,6 +408,71 @@ impl FilterKind {
             Self::MaxThreshold { .. } => "max threshold + windowed R",
             Self::FuzzyAdaptive { .. } => "fuzzy adaptive",
             Self::StrongTrackingFading { .. } => "fading KF",
+        }
+    }
+}
+
+/// One parameter of a filter kind, as files write it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Param {
+    /// Its key.
+    pub key: &'static str,
+    /// Its value.
+    pub value: ParamValue,
+    /// What it is and its range (the comment writers put beside it).
+    pub comment: &'static str,
+}
+
+impl Param {
+    fn new(key: &'static str, value: ParamValue) -> Self {
+        let comment = match key {
+            "forgetting" => "Sage-Husa forgetting factor b, (0, 1)",
+            "reserve" => "reserve coefficient γ of the divergence test, ≥ 1",
+            "lambda_max" => "upper clamp of the fading factor λ, ≥ 1 (inf: none)",
+            "significance" => "significance α of the χ² compression threshold, (0, 1)",
+            "alpha" => "sigma-point spread α, (0, 1]",
+            "beta" => "prior-knowledge β (2: Gaussian), ≥ 0",
+            "kappa" => "secondary scaling κ",
+            "rho" => "forgetting factor ρ of the innovation covariance, [0, 1]",
+            "softening" => "softening β on R, ≥ 1",
+            "threshold_m_s" => "|v_INS − v_odometer| limit, m/s, > 0",
+            "window" => "innovations in the R window: 10, 20 or 50",
+            "fade_states" => {
+                "states the fade scales: \"all\" (papers), \"velocity-position\", \"attitude-velocity-position\""
+            }
+            _ => "",
+        };
+        Self {
+            key,
+            value,
+            comment,
+        }
+    }
+}
+
+/// The value of a [`Param`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ParamValue {
+    /// A number.
+    Number(f64),
+    /// An R window length.
+    Window(usize),
+    /// The states a fade scales.
+    Fade(FadeBlock),
+}
+
+impl core::fmt::Display for ParamValue {
+    /// In TOML syntax: a float that reads back to the same bits, an
+    /// integer, or a quoted name.
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::Number(x) if x.is_infinite() => {
+                f.write_str(if *x > 0.0 { "inf" } else { "-inf" })
+            }
+            Self::Number(x) if x.is_nan() => f.write_str("nan"),
+            Self::Number(x) => write!(f, "{x:?}"),
+            Self::Window(w) => write!(f, "{w}"),
+            Self::Fade(b) => write!(f, "\"{}\"", b.name()),
         }
     }
 }

@@ -16,11 +16,10 @@ mod s003;
 mod s004;
 mod setup;
 mod study;
-mod units;
 
 use kestrel::nalgebra::Vector3;
 
-pub use filters::{FadeBlock, FilterKind};
+pub use filters::{FadeBlock, FilterKind, Param, ParamValue};
 pub use s000::scenario_000;
 pub use s001::scenario_001;
 pub use s002::scenario_002;

@@ -3,11 +3,11 @@
 
 use kestrel::nalgebra::Vector3;
 
-use super::units::{deg_per_h, ug};
 use super::{
     v3, ErrorModelKind, FadeBlock, FilterKind, FilterSetup, InitialErrors, InitialUncertainty,
     MeasurementKind, MeasurementNoise, Scenario,
 };
+use crate::config::units::{DEG_PER_H, UG};
 use kestrel::nav::earth::Ellipsoid;
 use kestrel::nav::geodetic::Geodetic;
 use kestrel::nav::imu_spec::ImuSpec;
@@ -167,9 +167,9 @@ pub fn scenario_000() -> Scenario {
                 attitude: Vector3::repeat(1f64.to_radians()),
                 velocity: Vector3::repeat(0.3),
                 position: Vector3::repeat(5.0),
-                gyro_bias: Vector3::repeat(deg_per_h(0.1)),
-                gyro_markov: Vector3::repeat(deg_per_h(0.02)),
-                accel_bias: Vector3::repeat(ug(100.0)),
+                gyro_bias: Vector3::repeat(DEG_PER_H.si(0.1)),
+                gyro_markov: Vector3::repeat(DEG_PER_H.si(0.02)),
+                accel_bias: Vector3::repeat(UG.si(100.0)),
                 odometer_scale: 0.0,
                 gyro_scale: Vector3::zeros(),
                 accel_scale: Vector3::zeros(),

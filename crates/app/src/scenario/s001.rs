@@ -2,11 +2,11 @@
 
 use kestrel::nalgebra::Vector3;
 
-use super::units::{deg_per_h, mg};
 use super::{
     v3, ErrorModelKind, FilterKind, FilterSetup, InitialErrors, InitialUncertainty,
     MeasurementKind, MeasurementNoise, Scenario,
 };
+use crate::config::units::{DEG_PER_H, MG};
 use kestrel::nav::earth::Ellipsoid;
 use kestrel::nav::geodetic::Geodetic;
 use kestrel::nav::imu_spec::ImuSpec;
@@ -100,9 +100,9 @@ pub fn scenario_001() -> Scenario {
                 attitude: v3(0.2, 0.2, 0.5).map(f64::to_radians),
                 velocity: Vector3::repeat(0.5),
                 position: Vector3::repeat(10.0),
-                gyro_bias: Vector3::repeat(deg_per_h(50.0)),
+                gyro_bias: Vector3::repeat(DEG_PER_H.si(50.0)),
                 gyro_markov: Vector3::zeros(),
-                accel_bias: Vector3::repeat(mg(10.0)),
+                accel_bias: Vector3::repeat(MG.si(10.0)),
                 odometer_scale: 0.0,
                 gyro_scale: Vector3::zeros(),
                 accel_scale: Vector3::zeros(),

@@ -3,11 +3,11 @@
 
 use kestrel::nalgebra::Vector3;
 
-use super::units::{deg_per_h, mg};
 use super::{
     v3, ErrorModelKind, FilterKind, FilterSetup, InitialErrors, InitialUncertainty,
     MeasurementKind, MeasurementNoise, Scenario,
 };
+use crate::config::units::{DEG_PER_H, MG};
 use kestrel::nav::earth::Ellipsoid;
 use kestrel::nav::geodetic::Geodetic;
 use kestrel::nav::imu_spec::ImuSpec;
@@ -217,8 +217,8 @@ pub fn scenario_002() -> Scenario {
         .with_accel_bias_mg(1.0)
         .with_accel_vrw_ug_per_sqrt_hz(50.0);
     let mut errors = ImuErrors::from_spec(&datasheet);
-    errors.gyro_bias = v3(0.5, -0.6, 0.7).map(deg_per_h);
-    errors.accel_bias = v3(0.8, -1.0, 0.6).map(mg);
+    errors.gyro_bias = v3(0.5, -0.6, 0.7).map(|x| DEG_PER_H.si(x));
+    errors.accel_bias = v3(0.8, -1.0, 0.6).map(|x| MG.si(x));
     let mut filter_imu = datasheet;
     filter_imu.gyro_markov_sigma = datasheet.gyro_bias;
     filter_imu.gyro_markov_tau = 3600.0;

@@ -3,11 +3,11 @@
 
 use kestrel::nalgebra::Vector3;
 
-use super::units::{arcmin, deg_per_h, ug};
 use super::{
     v3, ErrorModelKind, FilterKind, FilterSetup, InitialErrors, InitialUncertainty,
     MeasurementKind, MeasurementNoise, Scenario,
 };
+use crate::config::units::{ARCMIN, DEG_PER_H, UG};
 use kestrel::nav::attitude::Euler;
 use kestrel::nav::earth::Ellipsoid;
 use kestrel::nav::geodetic::Geodetic;
@@ -133,7 +133,7 @@ pub fn scenario_003() -> Scenario {
         OdometerFault::roll_slip(TimeWindow::new(2000.0, 2100.0), 1.0, 1.3),
     ];
 
-    let att = v3(arcmin(1.0), arcmin(1.0), arcmin(10.0));
+    let att = v3(ARCMIN.si(1.0), ARCMIN.si(1.0), ARCMIN.si(10.0));
     Scenario {
         name: "003".into(),
         description: "1 h vehicle SINS/odometer run with wheel spin, skid and slip faults (fuzzy adaptive KF)".into(),
@@ -157,9 +157,9 @@ pub fn scenario_003() -> Scenario {
                 attitude: att,
                 velocity: Vector3::repeat(0.01),
                 position: Vector3::repeat(0.01),
-                gyro_bias: Vector3::repeat(deg_per_h(0.01)),
+                gyro_bias: Vector3::repeat(DEG_PER_H.si(0.01)),
                 gyro_markov: Vector3::zeros(),
-                accel_bias: Vector3::repeat(ug(100.0)),
+                accel_bias: Vector3::repeat(UG.si(100.0)),
                 odometer_scale: 0.005,
                 gyro_scale: Vector3::zeros(),
                 accel_scale: Vector3::zeros(),

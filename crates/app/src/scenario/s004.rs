@@ -3,11 +3,11 @@
 
 use kestrel::nalgebra::Vector3;
 
-use super::units::{arcsec, deg_per_h, ug};
 use super::{
     v3, ErrorModelKind, FadeBlock, FilterKind, FilterSetup, InitialErrors, InitialUncertainty,
     MeasurementKind, MeasurementNoise, Scenario,
 };
+use crate::config::units::{ARCSEC, DEG_PER_H, UG};
 use kestrel::nav::earth::Ellipsoid;
 use kestrel::nav::geodetic::Geodetic;
 use kestrel::nav::imu_spec::ImuSpec;
@@ -128,7 +128,7 @@ pub fn scenario_004() -> Scenario {
     .then(Segment::turn_rate_deg(5.0, -90.0))
     .then(Segment::CruiseUntil { time: 2000.0 });
 
-    let gyro_markov = v3(0.001, 0.001, 0.003).map(deg_per_h);
+    let gyro_markov = v3(0.001, 0.001, 0.003).map(|x| DEG_PER_H.si(x));
     let spec = ImuSpec::perfect()
         .with_gyro_bias_deg_per_h(0.1)
         .with_gyro_markov_deg_per_h(0.003, 3600.0)
@@ -162,7 +162,7 @@ pub fn scenario_004() -> Scenario {
             std: att_std,
         }),
         initial_errors: InitialErrors {
-            attitude: v3(arcsec(5.0), arcsec(5.0), -arcsec(2.0)),
+            attitude: v3(ARCSEC.si(5.0), ARCSEC.si(5.0), -ARCSEC.si(2.0)),
             velocity: v3(0.24, 0.24, -0.3),
             position: v3(4.0, 4.0, -7.0),
         },
@@ -171,12 +171,12 @@ pub fn scenario_004() -> Scenario {
             measurement: MeasurementKind::AttitudeVelocityPosition,
             imu_model: spec,
             p0: InitialUncertainty {
-                attitude: v3(arcsec(80.0), arcsec(80.0), arcsec(100.0)),
+                attitude: v3(ARCSEC.si(80.0), ARCSEC.si(80.0), ARCSEC.si(100.0)),
                 velocity: v3(0.3, 0.3, 0.4),
                 position: v3(5.0, 5.0, 8.0),
-                gyro_bias: Vector3::repeat(deg_per_h(0.1)),
+                gyro_bias: Vector3::repeat(DEG_PER_H.si(0.1)),
                 gyro_markov,
-                accel_bias: v3(ug(10.0), ug(10.0), ug(15.0)),
+                accel_bias: v3(UG.si(10.0), UG.si(10.0), UG.si(15.0)),
                 odometer_scale: 0.0,
                 gyro_scale: Vector3::zeros(),
                 accel_scale: Vector3::zeros(),

@@ -13,8 +13,8 @@ use core::ops::RangeInclusive;
 
 use kestrel::nalgebra::Vector3;
 
-use super::units::mg;
 use super::{by_name, FilterKind, Scenario};
+use crate::config::units::MG;
 use kestrel::sim::{NoiseWindow, OutlierKind, TimeWindow};
 
 /// The seeds each built-in scenario's parameters were chosen on (the
@@ -240,8 +240,8 @@ fn with_surge(s: &mut Scenario) {
 /// factor on the vertical axis (1 g × 10⁻³), changing in manoeuvres, so
 /// P0 1 mg and a first-order Markov bias of 1 mg, τ = 3600 s.
 fn realistic_accel_bias(s: &mut Scenario) {
-    s.filter.p0.accel_bias = Vector3::repeat(mg(1.0));
-    s.filter.imu_model.accel_markov_sigma = mg(1.0);
+    s.filter.p0.accel_bias = Vector3::repeat(MG.si(1.0));
+    s.filter.imu_model.accel_markov_sigma = MG.si(1.0);
     s.filter.imu_model.accel_markov_tau = 3600.0;
 }
 

@@ -60,7 +60,7 @@ pub fn scenario(arg: &str) -> Result<Scenario, Error> {
     }
     let path = Path::new(arg);
     if path.extension().is_some_and(|e| e == "toml") {
-        return crate::scenario_file::load(path);
+        return crate::config::scenario::load(path);
     }
     Err(Error::Failed(format!(
         "unknown scenario `{arg}`: expected 000, 001, 002, 003, 004 or a .toml file"

@@ -7,8 +7,7 @@ use crate::scenario::{ErrorModelKind, FilterKind, Scenario};
 use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::{Ellipsoid, NavState};
 
-use crate::process::filter_params::{filter_params, Param};
-use crate::process::units::{deg_per_h, deg_per_sqrt_h, m_s_per_sqrt_h, ug};
+use crate::config::units::{DEG_PER_H, DEG_PER_SQRT_H, M_S_PER_SQRT_H, UG};
 use kestrel_io::gins::{degrees_exact, invert_exact};
 
 /// `x` in a unit whose conversion to SI is `to_si` (by the factor `per`),
@@ -38,23 +37,12 @@ fn earth_name(e: &Ellipsoid) -> &'static str {
 
 /// The `[filter]` lines of `kind` (`None` if `process` does not run it).
 fn filter_lines(kind: &FilterKind) -> Option<String> {
-    let name = match kind {
-        FilterKind::Standard => "ekf",
-        FilterKind::IctErekf { .. } => "ict-erekf",
-        FilterKind::SageHusaFading { .. } => "sage-husa-fading",
-        FilterKind::ImprovedAdaptive { .. } => "improved-adaptive",
-        FilterKind::StrongTrackingFading { .. } => "fading",
-        FilterKind::MaxThreshold { .. } => "max-threshold",
-        FilterKind::FuzzyAdaptive { .. } => "fuzzy-adaptive",
-        FilterKind::FederatedUkf { .. } | FilterKind::FederatedSrUkf { .. } => return None,
-    };
-    let mut lines = format!("kind = \"{name}\"\n");
-    for p in filter_params(kind) {
-        let _ = match p {
-            Param::Number(key, v) => writeln!(lines, "{key} = {}", f(v)),
-            Param::Window(n) => writeln!(lines, "window = {n}"),
-            Param::Fade(states) => writeln!(lines, "fade_states = \"{}\"", states.name()),
-        };
+    if kind.is_federated() {
+        return None;
+    }
+    let mut lines = format!("kind = \"{}\"\n", kind.name());
+    for p in kind.params() {
+        let _ = writeln!(lines, "{} = {}", p.key, p.value);
     }
     Some(lines)
 }
@@ -68,7 +56,7 @@ fn filter_lines(kind: &FilterKind) -> Option<String> {
 /// let s = kestrel_app::scenario::by_name("002").unwrap();
 /// let truth = s.trajectory().unwrap().initial_state();
 /// let text = process_config(&s, &s.initial_state(&truth), &s.filters[1]);
-/// let set = kestrel_app::process::config::parse(&text, "p.toml".as_ref()).unwrap();
+/// let set = kestrel_app::config::process::parse(&text, "p.toml".as_ref()).unwrap();
 /// // The filter's noise model; the turn-on biases go to P0 and scale
 /// // factors are not states, so `process` has no keys for them.
 /// let m = s.filter.imu_model;
@@ -109,7 +97,7 @@ pub fn process_config(scenario: &Scenario, start: &NavState, kind: &FilterKind) 
         v3(&Vector3::new(e.roll, e.pitch, e.yaw), degrees_exact)
     );
     let p = &fs.p0;
-    let dph = |x| inv(x, deg_per_h(1.0), deg_per_h);
+    let dph = |x| inv(x, DEG_PER_H.si(1.0), DEG_PER_H.to_si);
     let _ = writeln!(w, "[initial.std]");
     let _ = writeln!(w, "attitude = {}", v3(&p.attitude, degrees_exact));
     let _ = writeln!(w, "velocity = {}", v3(&p.velocity, |x| x));
@@ -119,7 +107,7 @@ pub fn process_config(scenario: &Scenario, start: &NavState, kind: &FilterKind) 
     let _ = writeln!(
         w,
         "accel_bias = {}",
-        v3(&p.accel_bias, |x| inv(x, ug(1.0), ug))
+        v3(&p.accel_bias, |x| inv(x, UG.si(1.0), UG.to_si))
     );
     let _ = writeln!(w, "odometer_scale = {}", f(p.odometer_scale));
     if let ErrorModelKind::Ins21 { .. } = fs.error_model {
@@ -133,19 +121,27 @@ pub fn process_config(scenario: &Scenario, start: &NavState, kind: &FilterKind) 
     let _ = writeln!(
         w,
         "gyro_arw = {}",
-        f(inv(m.gyro_arw, deg_per_sqrt_h(1.0), deg_per_sqrt_h))
+        f(inv(
+            m.gyro_arw,
+            DEG_PER_SQRT_H.si(1.0),
+            DEG_PER_SQRT_H.to_si
+        ))
     );
     let _ = writeln!(
         w,
         "accel_vrw = {}",
-        f(inv(m.accel_vrw, m_s_per_sqrt_h(1.0), m_s_per_sqrt_h))
+        f(inv(
+            m.accel_vrw,
+            M_S_PER_SQRT_H.si(1.0),
+            M_S_PER_SQRT_H.to_si
+        ))
     );
     let _ = writeln!(w, "gyro_markov_sigma = {}", f(dph(m.gyro_markov_sigma)));
     let _ = writeln!(w, "gyro_markov_tau = {}", f(m.gyro_markov_tau));
     let _ = writeln!(
         w,
         "accel_markov_sigma = {}",
-        f(inv(m.accel_markov_sigma, ug(1.0), ug))
+        f(inv(m.accel_markov_sigma, UG.si(1.0), UG.to_si))
     );
     let _ = writeln!(w, "accel_markov_tau = {}", f(m.accel_markov_tau));
     if let ErrorModelKind::Ins21 { scale_tau } = fs.error_model

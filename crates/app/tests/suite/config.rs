@@ -7,8 +7,12 @@ use kestrel_app::scenario::FilterKind;
 
 #[test]
 fn the_shipped_example_configuration_is_valid() {
-    use kestrel_app::process::config::{load, GnssNoise};
-    use kestrel_app::process::units::{deg_per_h, deg_per_sqrt_h, m_s_per_sqrt_h, ug};
+    use kestrel_app::config::process::{load, GnssNoise};
+    use kestrel_app::config::units::{DEG_PER_H, DEG_PER_SQRT_H, M_S_PER_SQRT_H, UG};
+    let deg_per_h = |x| DEG_PER_H.si(x);
+    let deg_per_sqrt_h = |x| DEG_PER_SQRT_H.si(x);
+    let m_s_per_sqrt_h = |x| M_S_PER_SQRT_H.si(x);
+    let ug = |x| UG.si(x);
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/process-example.toml");
     let s = load(&path).unwrap();
     assert_eq!((s.week, s.start.time), (2300, 356_400.0));
@@ -30,8 +34,8 @@ fn the_shipped_example_configuration_is_valid() {
 /// the filter with it fails.
 #[test]
 fn filter_parameter_ranges_equal_the_filters_ranges() {
+    use kestrel_app::config::process::parse;
     use kestrel_app::experiment::build_filter;
-    use kestrel_app::process::config::parse;
     let base = "[initial]\ntime = 0\nposition = [30, 114, 20]\nattitude = [0, 0, 0]\n\
                 [initial.std]\nattitude = [1, 1, 1]\nvelocity = [1, 1, 1]\nposition = [1, 1, 1]\n";
     let values = [
@@ -65,7 +69,8 @@ fn filter_parameter_ranges_equal_the_filters_ranges() {
                 refused += 1;
                 let e = e.to_string();
                 assert!(
-                    e.starts_with(&format!("p.toml: key `filter.{key}`: expected ")),
+                    e.starts_with("p.toml:11:")
+                        && e.contains(&format!(": key `filter.{key}`: expected ")),
                     "{e}"
                 );
             }
@@ -127,8 +132,10 @@ impl kestrel_app::experiment::FilterLoop<6> for Probe {
 /// combinations that make no sense refused with the key.
 #[test]
 fn datasheet_units_bias_models_and_constraints() {
-    use kestrel_app::process::config::parse;
-    use kestrel_app::process::units::{deg_per_h, ug};
+    use kestrel_app::config::process::parse;
+    use kestrel_app::config::units::{DEG_PER_H, UG};
+    let deg_per_h = |x| DEG_PER_H.si(x);
+    let ug = |x| UG.si(x);
     use kestrel_app::scenario::ErrorModelKind;
     let base = "[initial]\ntime = 0\nposition = [30, 114, 20]\nattitude = [0, 0, 0]\n\
                 gyro_scale = [100, 0, -50]\n\
@@ -202,18 +209,35 @@ fn datasheet_units_bias_models_and_constraints() {
         ),
     ];
     for (extra, key, message) in refused {
-        let e = parse(&format!("{base}{extra}"), "p.toml".as_ref())
-            .unwrap_err()
-            .to_string();
-        assert_eq!(e, format!("p.toml: key `{key}`: {message}"), "{extra}");
+        let text = format!("{base}{extra}");
+        let e = parse(&text, "p.toml".as_ref()).unwrap_err().to_string();
+        assert_located(&e, &text, key, message);
     }
+}
+
+/// `e` is `p.toml:LINE:COLUMN: key `key`: message` with the line that of
+/// `key` (its last part, or its table's header when the key is absent).
+fn assert_located(e: &str, text: &str, key: &str, message: &str) {
+    let parts: Vec<&str> = e.splitn(4, ':').collect();
+    assert_eq!(parts.len(), 4, "{e}");
+    assert_eq!(parts[0], "p.toml", "{e}");
+    assert_eq!(parts[3], format!(" key `{key}`: {message}"), "{e}");
+    let line: usize = parts[1].parse().expect(e);
+    let _column: usize = parts[2].parse().expect(e);
+    let leaf = key.rsplit('.').next().unwrap().split('[').next().unwrap();
+    let table = key.split('.').next().unwrap();
+    let at = text.lines().nth(line - 1).unwrap_or("");
+    assert!(
+        at.contains(leaf) || at.contains(table),
+        "{e}: line {line} is `{at}`"
+    );
 }
 
 /// The max-threshold baseline takes an optional R window (the fuzzy
 /// filter's lengths only), named in the error when refused.
 #[test]
 fn max_threshold_takes_an_optional_r_window() {
-    use kestrel_app::process::config::parse;
+    use kestrel_app::config::process::parse;
     let base = "[initial]\ntime = 0\nposition = [30, 114, 20]\nattitude = [0, 0, 0]\n\
                 [initial.std]\nattitude = [1, 1, 1]\nvelocity = [1, 1, 1]\nposition = [1, 1, 1]\n\
                 [odometer]\nrate = 10.0\nspeed_std = 0.1\nnhc_std = 0.1\nscale_tau = 3600.0\nscale_sigma = 0.001\nmounting = [0.0, 0.0]\nlever_arm = [0.0, 0.0, 0.0]\n\
@@ -236,6 +260,6 @@ fn max_threshold_takes_an_optional_r_window() {
     let e = kind("window = 30\n").unwrap_err().to_string();
     assert_eq!(
         e,
-        "p.toml: key `filter.window`: expected 10, 20 or 50, found 30"
+        "p.toml:21:10: key `filter.window`: expected 10, 20 or 50, found 30"
     );
 }

@@ -4,8 +4,9 @@
 
 use std::path::{Path, PathBuf};
 
+use kestrel_app::config::scenario::{load, parse, to_toml};
 use kestrel_app::scenario::by_name;
-use kestrel_app::scenario_file::{load, parse, to_toml};
+use kestrel_app::scenario::FilterKind;
 use kestrel_app::Error as CliError;
 
 /// The shipped example files (without `.toml`).
@@ -234,7 +235,7 @@ fn wrong_type_names_line_column_and_the_expected_type() {
             "kind = \"standard\"",
             "kind = \"kalman\"",
             "bad.toml:31:8: key `filters[0].kind`: unknown value `kalman`, expected one of \
-             `standard`, `sage-husa-fading`, `improved-adaptive`, `federated-ukf`, \
+             `ekf`, `sage-husa-fading`, `improved-adaptive`, `federated-ukf`, \
              `federated-sr-ukf`, `ict-erekf`, `max-threshold`, `fuzzy-adaptive`, \
              `strong-tracking-fading`",
         ),
@@ -267,27 +268,28 @@ fn out_of_range_values_name_key_path_and_allowed_range() {
         (
             "forgetting = 0.97",
             "forgetting = 1.2",
-            "bad.toml:35:14: key `filters[1].forgetting`: must be in (0, 1], found 1.2",
+            "bad.toml:35:14: key `filters[1].forgetting`: expected 0 < b < 1, found 1.2",
         ),
         (
             "reserve = 3.0",
             "reserve = 0.5",
-            "bad.toml:36:11: key `filters[1].reserve`: must be a finite number ≥ 1, found 0.5",
+            "bad.toml:36:11: key `filters[1].reserve`: expected finite and at least 1, found 0.5",
         ),
         (
             "kind = \"standard\"",
             "kind = \"ict-erekf\"\nsignificance = 0.5",
-            "bad.toml:32:16: key `filters[0].significance`: must be in (0, 0.5), found 0.5",
+            "bad.toml:32:16: key `filters[0].significance`: expected 0.01 ≤ significance ≤ 0.15 \
+             (the range the test is built for), found 0.5",
         ),
         (
             "kind = \"standard\"",
             "kind = \"fuzzy-adaptive\"\nwindow = 30",
-            "bad.toml:32:10: key `filters[0].window`: must be one of 10, 20, 50, found 30",
+            "bad.toml:32:10: key `filters[0].window`: expected 10, 20 or 50, found 30",
         ),
         (
             "kind = \"standard\"",
             "kind = \"max-threshold\"\nthreshold_m_s = 1.0\nwindow = 30",
-            "bad.toml:33:10: key `filters[0].window`: must be one of 10, 20, 50, found 30",
+            "bad.toml:33:10: key `filters[0].window`: expected 10, 20 or 50, found 30",
         ),
         (
             "duration_s = 10.0",
@@ -309,7 +311,7 @@ fn keys_that_do_not_fit_the_kind_are_rejected() {
         (
             "kind = \"standard\"",
             "kind = \"standard\"\nreserve = 3.0",
-            "bad.toml:32:11: key `filters[0].reserve`: does not apply to kind = \"standard\", \
+            "bad.toml:32:11: key `filters[0].reserve`: does not apply to kind = \"ekf\", \
              which takes no parameters",
         ),
         (
@@ -364,15 +366,24 @@ fn damaged_files_never_panic() {
     }
 }
 
+/// A filter parameter left out takes its documented default, in scenario
+/// files as in `process` configurations (one definition,
+/// `FilterKind::from_params`).
+#[test]
+fn missing_filter_parameters_take_their_defaults() {
+    let text = BASE.replacen("lambda_max = 1.5\n", "", 1);
+    let s = parse(&text, Path::new("base.toml")).unwrap();
+    let FilterKind::SageHusaFading { lambda_max, .. } = s.filters[1] else {
+        panic!("{:?}", s.filters[1]);
+    };
+    assert_eq!(lambda_max, 10.0);
+    let base = parse(BASE, Path::new("base.toml")).unwrap();
+    assert_ne!(base.filters[1], s.filters[1]);
+}
+
 #[test]
 fn missing_parameters_and_unflyable_segments_are_named() {
     assert_errors(&[
-        (
-            "lambda_max = 1.5\n",
-            "",
-            "bad.toml:33:1: key `filters[1].lambda_max`: missing; kind = \"sage-husa-fading\" \
-             needs it",
-        ),
         (
             "duration_s = 10.0\n",
             "duration_s = 10.0\n\n[[trajectory.segment]]\ntype = \"turn\"\nangle_deg = 5.0\n",

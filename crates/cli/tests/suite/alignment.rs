@@ -13,7 +13,7 @@ use crate::support;
 
 use std::path::Path;
 
-use kestrel_app::process::config::YawSource;
+use kestrel_app::config::process::YawSource;
 use kestrel_cli::process::{process, ProcessArgs};
 use support::{run_args, simulate_file, tmp_dir};
 

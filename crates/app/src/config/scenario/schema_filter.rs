@@ -4,7 +4,7 @@
 use serde::Deserialize;
 
 use super::schema_sensors::ImuSection;
-use super::vec3::V3;
+use crate::config::vec3::V3;
 
 /// Error-state models.
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
@@ -74,48 +74,4 @@ pub(super) struct RSection {
     pub attitude_arcmin: Option<V3>,
     pub attitude_arcsec: Option<V3>,
     pub odometer_m_s: Option<V3>,
-}
-
-/// Filter kinds.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "kebab-case")]
-pub(super) enum FilterName {
-    Standard,
-    SageHusaFading,
-    ImprovedAdaptive,
-    FederatedUkf,
-    FederatedSrUkf,
-    IctErekf,
-    MaxThreshold,
-    FuzzyAdaptive,
-    StrongTrackingFading,
-}
-
-/// The error states a fade scales.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "kebab-case")]
-pub(super) enum FadeName {
-    All,
-    VelocityPosition,
-    AttitudeVelocityPosition,
-}
-
-/// One `[[filters]]`: the parameters a kind takes are checked when
-/// converting.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct FilterEntry {
-    pub kind: FilterName,
-    pub forgetting: Option<f64>,
-    pub reserve: Option<f64>,
-    pub lambda_max: Option<f64>,
-    pub significance: Option<f64>,
-    pub alpha: Option<f64>,
-    pub beta: Option<f64>,
-    pub kappa: Option<f64>,
-    pub threshold_m_s: Option<f64>,
-    pub window: Option<i64>,
-    pub rho: Option<f64>,
-    pub softening: Option<f64>,
-    pub fade_states: Option<FadeName>,
 }

@@ -3,8 +3,8 @@
 use kestrel::nav::{Euler, Geodetic};
 use kestrel::sim::{ClimbRate, Segment, TrajectorySpec, TurnRate, Vehicle};
 
-use super::check::{bad, join, need, num, reject, Range, Res};
 use super::schema::{SegmentEntry, SegmentType, TrajectorySection, VehicleName};
+use crate::config::check::{bad, join, need, num, reject, Range, Res};
 
 /// `[trajectory]` with its `[[trajectory.segment]]`s.
 pub(super) fn trajectory(t: &TrajectorySection) -> Res<TrajectorySpec> {

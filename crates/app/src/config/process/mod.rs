@@ -4,18 +4,35 @@
 
 use std::path::Path;
 
-use crate::experiment::{
-    build_filter, BuildError, Describe, FilterLoop, OdometerProcessing, PositionAxes,
-};
-use crate::scenario::{ErrorModelKind, FadeBlock, FilterKind, InitialUncertainty};
-use kestrel::adapter::{NoiseAdapter, PriorAdapter};
+use crate::experiment::PositionAxes;
+use crate::scenario::{ErrorModelKind, FilterKind, InitialUncertainty};
 use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::{Ellipsoid, Euler, Geodetic, ImuBiases, ImuSpec, NavState};
-use kestrel::FilterError;
 use serde::{Deserialize, Deserializer};
 
-use super::timing::{LongGap, TimingRule};
-use super::units::{deg, deg_per_h, deg_per_sqrt_h, m_s_per_sqrt_h, ppm, ug};
+use crate::config::filter::{read_kind, Keys, Kinds};
+use crate::config::read::Source;
+use crate::config::units::{DEG, DEG_PER_H, DEG_PER_SQRT_H, M_S_PER_SQRT_H, PPM, UG};
+use crate::process::timing::{LongGap, TimingRule};
+
+fn deg(x: f64) -> f64 {
+    DEG.si(x)
+}
+fn deg_per_h(x: f64) -> f64 {
+    DEG_PER_H.si(x)
+}
+fn deg_per_sqrt_h(x: f64) -> f64 {
+    DEG_PER_SQRT_H.si(x)
+}
+fn m_s_per_sqrt_h(x: f64) -> f64 {
+    M_S_PER_SQRT_H.si(x)
+}
+fn ppm(x: f64) -> f64 {
+    PPM.si(x)
+}
+fn ug(x: f64) -> f64 {
+    UG.si(x)
+}
 use crate::{Error, InputError};
 use kestrel_io::gins::imu_format::{signed_axis, ImuFormat, Measures, TimeBase};
 use kestrel_io::gins::physical;
@@ -230,23 +247,46 @@ struct Imu {
     long_gap: Option<String>,
 }
 
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// `[filter]`: the error model, the covariance interval and the lever arm;
+/// every other key is the filter kind's ([`read_kind`]). Read key by key
+/// (not with `serde(flatten)`), so a wrong type keeps its line and column.
+#[derive(Debug, Default)]
 struct Filter {
-    kind: Option<String>,
     error_model: Option<String>,
     covariance_interval: Option<f64>,
-    #[serde(default)]
     lever_arm: V3,
-    significance: Option<f64>,
-    forgetting: Option<f64>,
-    reserve: Option<f64>,
-    lambda_max: Option<f64>,
-    rho: Option<f64>,
-    softening: Option<f64>,
-    threshold: Option<f64>,
-    window: Option<usize>,
-    fade_states: Option<String>,
+    kind: Keys,
+}
+
+impl<'de> Deserialize<'de> for Filter {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Table;
+        impl<'de> serde::de::Visitor<'de> for Table {
+            type Value = Filter;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("the [filter] table")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                mut map: A,
+            ) -> Result<Filter, A::Error> {
+                let mut out = Filter::default();
+                while let Some(key) = map.next_key::<String>()? {
+                    match key.as_str() {
+                        "error_model" => out.error_model = Some(map.next_value()?),
+                        "covariance_interval" => out.covariance_interval = Some(map.next_value()?),
+                        "lever_arm" => out.lever_arm = map.next_value()?,
+                        _ => {
+                            let value = map.next_value()?;
+                            out.kind.insert(key, value);
+                        }
+                    }
+                }
+                Ok(out)
+            }
+        }
+        d.deserialize_map(Table)
+    }
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -478,26 +518,18 @@ pub fn load(path: &Path) -> Result<Settings, Error> {
 /// let text = "[initial]\ntime = 0\nposition = [30, 114, 20]\nattitude = [0, 0, 0]\n\
 ///     [initial.std]\nattitude = [1, 1, 1]\nvelocity = [1, 1, 1]\nposition = [1, 1, 1]\n\
 ///     [filter]\nkind = \"ekf\"\nrho = 0.5\n";
-/// let e = kestrel_app::process::config::parse(text, "p.toml".as_ref()).unwrap_err();
-/// assert_eq!(e.to_string(), "p.toml: key `filter.rho`: not a parameter of kind `ekf`");
+/// let e = kestrel_app::config::process::parse(text, "p.toml".as_ref()).unwrap_err();
+/// assert_eq!(
+///     e.to_string(),
+///     "p.toml:11:7: key `filter.rho`: does not apply to kind = \"ekf\", which takes no parameters"
+/// );
 /// ```
 pub fn parse(text: &str, path: &Path) -> Result<Settings, Error> {
-    let file: File = toml::from_str(text).map_err(|e| syntax(text, path, &e))?;
-    Check { path }.settings(file).map_err(Error::from)
-}
-
-/// A TOML error with its line and column.
-fn syntax(text: &str, path: &Path, e: &toml::de::Error) -> Error {
-    let msg = e.message().trim().replace('\n', " ");
-    match e.span() {
-        Some(span) => {
-            let before = &text[..span.start.min(text.len())];
-            let line = before.matches('\n').count() + 1;
-            let column = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
-            InputError::at(path, line, column, msg).into()
-        }
-        None => InputError::file(path, msg).into(),
-    }
+    let source = Source::new(text, path);
+    let file: File = source.parse()?;
+    Check { source: &source }
+        .settings(file)
+        .map_err(Error::from)
 }
 
 /// Whether a σ of 0 means "none" or is refused.
@@ -512,12 +544,13 @@ fn id(x: f64) -> f64 {
 }
 
 struct Check<'a> {
-    path: &'a Path,
+    source: &'a Source<'a>,
 }
 
 impl Check<'_> {
+    /// The error `msg` about `key`, at its line and column.
     fn err(&self, key: &str, msg: impl Into<String>) -> InputError {
-        InputError::file(self.path, msg).with_key(key)
+        self.source.error(key, msg)
     }
 
     fn finite(&self, key: &str, x: f64) -> Result<f64, InputError> {
@@ -533,18 +566,6 @@ impl Check<'_> {
             Ok(x)
         } else {
             Err(self.err(key, format!("expected a finite value ≥ 0, found {x}")))
-        }
-    }
-
-    /// An R window length: 10, 20 or 50 innovations (compile-time lengths).
-    fn r_window(&self, window: usize) -> Result<usize, InputError> {
-        if [10, 20, 50].contains(&window) {
-            Ok(window)
-        } else {
-            Err(self.err(
-                "filter.window",
-                format!("expected 10, 20 or 50, found {window}"),
-            ))
         }
     }
 
@@ -1508,58 +1529,17 @@ impl Check<'_> {
     }
 
     fn kind(&self, f: &Filter, model: ErrorModelKind) -> Result<FilterKind, InputError> {
-        let name = f.kind.as_deref().unwrap_or("ekf");
+        let kind = read_kind(&f.kind, "filter", Some("ekf"), Kinds::Engine)
+            .map_err(|b| self.err(&b.key, b.message))?;
         let odometer = matches!(model, ErrorModelKind::Odometer16 { .. });
-        // Which optional parameters each kind takes.
-        let takes: &[&str] = match name {
-            "ekf" => &[],
-            "ict-erekf" => &["significance"],
-            "sage-husa-fading" => &["forgetting", "reserve", "lambda_max", "fade_states"],
-            "improved-adaptive" => &[
-                "forgetting",
-                "reserve",
-                "lambda_max",
-                "significance",
-                "fade_states",
-            ],
-            "fading" => &["rho", "softening", "lambda_max", "fade_states"],
-            "max-threshold" => &["threshold", "window"],
-            "fuzzy-adaptive" => &["window"],
-            other => {
-                return Err(self.err(
-                    "filter.kind",
-                    format!(
-                        "expected `ekf`, `ict-erekf`, `sage-husa-fading`, `improved-adaptive`, \
-                         `fading`, `max-threshold` or `fuzzy-adaptive`, found `{other}`"
-                    ),
-                ))
-            }
-        };
-        let given = [
-            ("significance", f.significance.is_some()),
-            ("forgetting", f.forgetting.is_some()),
-            ("reserve", f.reserve.is_some()),
-            ("lambda_max", f.lambda_max.is_some()),
-            ("rho", f.rho.is_some()),
-            ("softening", f.softening.is_some()),
-            ("threshold", f.threshold.is_some()),
-            ("window", f.window.is_some()),
-            ("fade_states", f.fade_states.is_some()),
-        ];
-        if let Some((k, _)) = given.iter().find(|(k, g)| *g && !takes.contains(k)) {
-            return Err(self.err(
-                &format!("filter.{k}"),
-                format!("not a parameter of kind `{name}`"),
-            ));
-        }
-        let odometer_kind = matches!(name, "max-threshold" | "fuzzy-adaptive");
-        if odometer_kind && !odometer {
+        let name = kind.name();
+        if kind.is_odometer() && !odometer {
             return Err(self.err(
                 "filter.kind",
                 format!("`{name}` needs error_model = `odometer16`"),
             ));
         }
-        if odometer && !matches!(name, "ekf" | "max-threshold" | "fuzzy-adaptive") {
+        if odometer && !(kind.is_odometer() || kind == FilterKind::Standard) {
             return Err(self.err(
                 "filter.kind",
                 format!(
@@ -1567,108 +1547,6 @@ impl Check<'_> {
                 ),
             ));
         }
-        // The adapters check their own ranges (`validate` below), so the file
-        // accepts exactly what the filter accepts.
-        let sig = |d| f.significance.unwrap_or(d);
-        let forgetting = f.forgetting.unwrap_or(0.97);
-        let reserve = f.reserve.unwrap_or(1.0);
-        let fade_name = f.fade_states.as_deref().unwrap_or("all");
-        let Some(fade_states) = FadeBlock::from_name(fade_name) else {
-            return Err(self.err(
-                "filter.fade_states",
-                format!(
-                    "expected `all`, `velocity-position` or `attitude-velocity-position`, \
-                     found `{fade_name}`"
-                ),
-            ));
-        };
-        let lambda_max = f.lambda_max.unwrap_or(10.0);
-        let kind = match name {
-            "ict-erekf" => FilterKind::IctErekf {
-                significance: sig(0.05),
-            },
-            "sage-husa-fading" => FilterKind::SageHusaFading {
-                forgetting,
-                reserve,
-                lambda_max,
-                fade_states,
-            },
-            "improved-adaptive" => FilterKind::ImprovedAdaptive {
-                forgetting,
-                reserve,
-                lambda_max,
-                significance: sig(0.05),
-                fade_states,
-            },
-            "fading" => FilterKind::StrongTrackingFading {
-                rho: f.rho.unwrap_or(0.95),
-                softening: f.softening.unwrap_or(1.0),
-                lambda_max: f.lambda_max.unwrap_or(f64::INFINITY),
-                fade_states,
-            },
-            "max-threshold" => FilterKind::MaxThreshold {
-                threshold: self.positive("filter.threshold", f.threshold.unwrap_or(1.0))?,
-                r_window: f.window.map(|w| self.r_window(w)).transpose()?,
-            },
-            "fuzzy-adaptive" => FilterKind::FuzzyAdaptive {
-                window: self.r_window(f.window.unwrap_or(20))?,
-            },
-            _ => FilterKind::Standard,
-        };
-        self.validate(&kind, odometer)?;
         Ok(kind)
     }
-
-    /// Builds the filter of `kind` once, turning a parameter it refuses into
-    /// an error naming the key, the filter's own range and the value.
-    fn validate(&self, kind: &FilterKind, odometer: bool) -> Result<(), InputError> {
-        let Err(BuildError::Invalid(FilterError::InvalidParameter { name, valid })) =
-            build_filter::<6, _>(kind, Probe { odometer })
-        else {
-            return Ok(());
-        };
-        let key = match name {
-            "max_fade" => "lambda_max",
-            other => other,
-        };
-        let value = match (key, *kind) {
-            ("significance", FilterKind::IctErekf { significance })
-            | ("significance", FilterKind::ImprovedAdaptive { significance, .. }) => significance,
-            ("forgetting", FilterKind::SageHusaFading { forgetting, .. })
-            | ("forgetting", FilterKind::ImprovedAdaptive { forgetting, .. }) => forgetting,
-            ("reserve", FilterKind::SageHusaFading { reserve, .. })
-            | ("reserve", FilterKind::ImprovedAdaptive { reserve, .. }) => reserve,
-            ("lambda_max", FilterKind::SageHusaFading { lambda_max, .. })
-            | ("lambda_max", FilterKind::ImprovedAdaptive { lambda_max, .. })
-            | ("lambda_max", FilterKind::StrongTrackingFading { lambda_max, .. }) => lambda_max,
-            ("rho", FilterKind::StrongTrackingFading { rho, .. }) => rho,
-            ("softening", FilterKind::StrongTrackingFading { softening, .. }) => softening,
-            _ => return Err(self.err("filter.kind", format!("{name}: expected {valid}"))),
-        };
-        Err(self.err(
-            &format!("filter.{key}"),
-            format!("expected {valid}, found {}", physical::show(value)),
-        ))
-    }
-}
-
-/// A filter loop that only builds the filter (to check its parameters).
-struct Probe {
-    odometer: bool,
-}
-
-impl FilterLoop<6> for Probe {
-    type Output = ();
-
-    fn odometer_model(&self) -> bool {
-        self.odometer
-    }
-
-    fn gnss<A>(self, _: A, _: FadeBlock)
-    where
-        A: PriorAdapter<f64> + NoiseAdapter<f64, 6, Report: Describe>,
-    {
-    }
-
-    fn odometer<P: OdometerProcessing>(self, _: P) {}
 }

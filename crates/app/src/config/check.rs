@@ -11,16 +11,16 @@ use super::vec3::V3;
 /// A value the scenario cannot use: where (dotted key path, arrays as
 /// `name[i]`, 0-based) and why.
 #[derive(Debug)]
-pub(super) struct Bad {
+pub(crate) struct Bad {
     pub key: String,
     pub message: String,
 }
 
 /// Result of a conversion step.
-pub(super) type Res<T> = Result<T, Bad>;
+pub(crate) type Res<T> = Result<T, Bad>;
 
 /// A failure at `key`.
-pub(super) fn bad(key: impl Into<String>, message: impl Into<String>) -> Bad {
+pub(crate) fn bad(key: impl Into<String>, message: impl Into<String>) -> Bad {
     Bad {
         key: key.into(),
         message: message.into(),
@@ -28,7 +28,7 @@ pub(super) fn bad(key: impl Into<String>, message: impl Into<String>) -> Bad {
 }
 
 /// `prefix.name` (or `name` at the top).
-pub(super) fn join(prefix: &str, name: impl Display) -> String {
+pub(crate) fn join(prefix: &str, name: impl Display) -> String {
     if prefix.is_empty() {
         name.to_string()
     } else {
@@ -38,7 +38,7 @@ pub(super) fn join(prefix: &str, name: impl Display) -> String {
 
 /// The allowed values of a number.
 #[derive(Clone, Copy, Debug)]
-pub(super) enum Range {
+pub(crate) enum Range {
     /// Finite.
     Any,
     /// Finite and ≥ 0 (standard deviations, amplitudes).
@@ -49,8 +49,6 @@ pub(super) enum Range {
     Tau,
     /// In `[lo, hi]` with open ends where the flags say so.
     Interval(f64, f64, bool, bool),
-    /// ≥ the value.
-    AtLeast(f64),
 }
 
 impl Range {
@@ -63,7 +61,6 @@ impl Range {
             Self::Interval(lo, hi, lo_open, hi_open) => {
                 (if lo_open { x > lo } else { x >= lo }) && (if hi_open { x < hi } else { x <= hi })
             }
-            Self::AtLeast(lo) => x.is_finite() && x >= lo,
         }
     }
 
@@ -78,13 +75,12 @@ impl Range {
                 if lo_open { '(' } else { '[' },
                 if hi_open { ')' } else { ']' }
             ),
-            Self::AtLeast(lo) => format!("a finite number ≥ {lo}"),
         }
     }
 }
 
 /// `x` if it lies in `range`.
-pub(super) fn num(key: &str, x: f64, range: Range) -> Res<f64> {
+pub(crate) fn num(key: &str, x: f64, range: Range) -> Res<f64> {
     if range.holds(x) {
         Ok(x)
     } else {
@@ -93,12 +89,12 @@ pub(super) fn num(key: &str, x: f64, range: Range) -> Res<f64> {
 }
 
 /// A required optional value.
-pub(super) fn need<T>(key: &str, x: Option<T>, why: &str) -> Res<T> {
+pub(crate) fn need<T>(key: &str, x: Option<T>, why: &str) -> Res<T> {
     x.ok_or_else(|| bad(key, format!("missing; {why}")))
 }
 
 /// Three values, each in `range`.
-pub(super) fn vec3(key: &str, v: V3, range: Range) -> Res<Vector3<f64>> {
+pub(crate) fn vec3(key: &str, v: V3, range: Range) -> Res<Vector3<f64>> {
     for (i, &x) in v.0.iter().enumerate() {
         num(&format!("{key}[{i}]"), x, range)?;
     }
@@ -107,13 +103,13 @@ pub(super) fn vec3(key: &str, v: V3, range: Range) -> Res<Vector3<f64>> {
 
 /// A quantity given in at most one of several units (`stem_unit` keys):
 /// checked in the file's unit, returned in SI.
-pub(super) fn quantity(
+pub(crate) fn quantity(
     prefix: &str,
     stem: &str,
     given: &[(&Unit, Option<V3>)],
     range: Range,
 ) -> Res<Option<Vector3<f64>>> {
-    let name = |u: &Unit| key_name(stem, u);
+    let name = |u: &Unit| u.key(stem);
     let mut present = given.iter().filter(|(_, v)| v.is_some());
     let Some(&(unit, Some(v))) = present.next() else {
         return Ok(None);
@@ -129,7 +125,7 @@ pub(super) fn quantity(
 }
 
 /// [`quantity`] for a single number.
-pub(super) fn scalar_quantity(
+pub(crate) fn scalar_quantity(
     prefix: &str,
     stem: &str,
     given: &[(&Unit, Option<f64>)],
@@ -151,18 +147,9 @@ pub(super) fn scalar_quantity(
     }
 }
 
-/// The key of `stem` in `unit`.
-pub(super) fn key_name(stem: &str, unit: &Unit) -> String {
-    if unit.suffix.is_empty() {
-        stem.to_string()
-    } else {
-        format!("{stem}_{}", unit.suffix)
-    }
-}
-
 /// Fails if any of the `(name, present)` keys is set: they do not apply to
 /// `what`, which takes `takes`.
-pub(super) fn reject(prefix: &str, keys: &[(&str, bool)], what: &str, takes: &str) -> Res<()> {
+pub(crate) fn reject(prefix: &str, keys: &[(&str, bool)], what: &str, takes: &str) -> Res<()> {
     match keys.iter().find(|(_, present)| *present) {
         Some((name, _)) => Err(bad(
             join(prefix, name),

@@ -4,12 +4,12 @@
 use kestrel::nav::nalgebra::Vector3;
 use kestrel::sim::{GnssConfig, MultipathBursts, NoiseWindow, Outlier, OutlierKind, ReportedStd};
 
-use super::check::{bad, join, need, num, reject, vec3, Range, Res};
 use super::convert_sensors::{bare_window, window};
 use super::schema_sensors::{
     GnssSection, NoiseWindowEntry, OutlierEntry, OutlierType, ReportedName,
 };
-use super::vec3::V3;
+use crate::config::check::{bad, join, need, num, reject, vec3, Range, Res};
+use crate::config::vec3::V3;
 
 /// `[gnss]`.
 pub(super) fn gnss(s: &GnssSection) -> Res<GnssConfig> {

@@ -7,12 +7,14 @@ use kestrel::sim::{
     AttitudeConfig, ImuErrors, OdometerConfig, OdometerFault, OdometerFaultKind, TimeWindow,
 };
 
-use super::check::{bad, join, need, num, quantity, reject, scalar_quantity, vec3, Range, Res};
 use super::schema_sensors::{
     AttitudeSection, FaultEntry, FaultType, ImuSection, OdometerSection, WindowEntry,
 };
-use super::units::{ACCEL, ACCEL_NOISE, ANGLE, GYRO_NOISE, GYRO_RATE, RATIO};
-use super::vec3::V3;
+use crate::config::check::{
+    bad, join, need, num, quantity, reject, scalar_quantity, vec3, Range, Res,
+};
+use crate::config::units::{ACCEL, ACCEL_NOISE, ANGLE, GYRO_NOISE, GYRO_RATE, RATIO};
+use crate::config::vec3::V3;
 
 /// The per-axis IMU errors of `s`, SI; absent keys are zero (τ: ∞).
 fn imu_axes(p: &str, s: &ImuSection) -> Res<ImuErrors> {

@@ -8,7 +8,7 @@ use serde::Deserialize;
 /// Three values (north, east, down or x, y, z); a single number in the file
 /// means the same value on every axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct V3(pub [f64; 3]);
+pub(crate) struct V3(pub [f64; 3]);
 
 impl<'de> Deserialize<'de> for V3 {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {

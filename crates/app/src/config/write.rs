@@ -1,35 +1,15 @@
-//! Writing a scenario as a commented file: every value in the unit that
-//! reads best and converts back to exactly the same number.
+//! Writing a configuration as a commented TOML file: every value in the
+//! unit that reads best and converts back to exactly the same number.
 
 use std::fmt::Write;
 
-use crate::scenario::Scenario;
 use kestrel::nav::nalgebra::Vector3;
 
-use super::check::key_name;
 use super::units::Unit;
-
-/// The scenario as a scenario file, every key commented; reading it back
-/// gives an equal scenario whenever each value is the conversion of a
-/// decimal number of at most 17 digits in one of the key's units (true of
-/// everything built from decimal constants).
-///
-/// ```
-/// use std::path::Path;
-/// let s = kestrel_app::scenario::scenario_001();
-/// let text = kestrel_app::scenario_file::to_toml(&s);
-/// assert!(text.contains("[[filters]]"));
-/// assert_eq!(kestrel_app::scenario_file::parse(&text, Path::new("x.toml")).unwrap(), s);
-/// ```
-pub fn to_toml(s: &Scenario) -> String {
-    let mut w = Writer::default();
-    super::emit_sections::write(&mut w, s);
-    w.out
-}
 
 /// Accumulates the file text.
 #[derive(Default)]
-pub(super) struct Writer {
+pub(crate) struct Writer {
     pub out: String,
 }
 
@@ -85,18 +65,18 @@ impl Writer {
                 number(values[2])
             )
         };
-        self.raw(&key_name(stem, unit), &text, comment);
+        self.raw(&unit.key(stem), &text, comment);
     }
 
     /// A scalar SI quantity in the best of `units`.
     pub fn scalar(&mut self, stem: &str, units: &[&Unit], x: f64, comment: &str) {
         let (unit, values) = best(units, &[x]);
-        self.raw(&key_name(stem, unit), &number(values[0]), comment);
+        self.raw(&unit.key(stem), &number(values[0]), comment);
     }
 }
 
 /// A float in TOML syntax.
-pub(super) fn number(x: f64) -> String {
+pub(crate) fn number(x: f64) -> String {
     if x.is_infinite() {
         if x > 0.0 { "inf" } else { "-inf" }.into()
     } else if x.is_nan() {

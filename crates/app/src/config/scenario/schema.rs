@@ -3,9 +3,10 @@
 
 use serde::Deserialize;
 
-use super::schema_filter::{FilterEntry, FilterSection};
+use super::schema_filter::FilterSection;
 use super::schema_sensors::{AttitudeSection, GnssSection, ImuSection, OdometerSection};
-use super::vec3::V3;
+use crate::config::filter::Keys;
+use crate::config::vec3::V3;
 
 /// The whole file.
 #[derive(Debug, Deserialize)]
@@ -20,7 +21,7 @@ pub(super) struct ScenarioFile {
     #[serde(default)]
     pub initial_errors: InitialErrorsSection,
     pub filter: FilterSection,
-    pub filters: Vec<FilterEntry>,
+    pub filters: Vec<Keys>,
 }
 
 /// `[scenario]`.

@@ -5,10 +5,10 @@ use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::Ellipsoid;
 use kestrel::sim::{ClimbRate, Segment, TurnRate, Vehicle};
 
-use super::emit::{number, Writer};
 use super::emit_filters::{filter, filter_entry};
 use super::emit_sensors::{gnss, imu, odometer};
-use super::units::{ANGLE, DEG, SI};
+use crate::config::units::{ANGLE, DEG, SI};
+use crate::config::write::{number, Writer};
 
 /// Writes every table of `s`.
 pub(super) fn write(w: &mut Writer, s: &Scenario) {

@@ -20,7 +20,7 @@ struct Entry {
 
 /// The key paths of a document (`gnss.outlier[2].start_s`) with their
 /// spans.
-pub(super) struct Places {
+pub(crate) struct Places {
     entries: Vec<Entry>,
 }
 
@@ -97,7 +97,7 @@ fn value(out: &mut Vec<Entry>, path: String, key: Option<Range<usize>>, v: &Span
 }
 
 /// 1-based line and column (in characters) of byte `offset` of `text`.
-pub(super) fn line_column(text: &str, offset: usize) -> (usize, usize) {
+pub(crate) fn line_column(text: &str, offset: usize) -> (usize, usize) {
     let offset = offset.min(text.len());
     let before = text.get(..offset).unwrap_or(text);
     let line = before.matches('\n').count() + 1;

@@ -3,7 +3,7 @@
 
 use serde::Deserialize;
 
-use super::vec3::V3;
+use crate::config::vec3::V3;
 
 /// IMU errors in datasheet units; per axis (`[imu]`) or one value for all
 /// axes (`[filter.imu]`, which has no rate).

@@ -5,11 +5,11 @@ use crate::scenario::{InitialErrors, Scenario};
 use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::Ellipsoid;
 
-use super::check::{bad, join, num, quantity, Range, Res};
 use super::convert_trajectory::trajectory;
 use super::schema::{Earth, Header, InitialErrorsSection, ScenarioFile};
-use super::units::{ANGLE, SI};
 use super::{convert_filter, convert_gnss, convert_sensors};
+use crate::config::check::{bad, join, num, quantity, Range, Res};
+use crate::config::units::{ANGLE, SI};
 
 /// Checks every value and builds the scenario.
 pub(super) fn scenario(f: ScenarioFile) -> Res<Scenario> {

@@ -1,14 +1,13 @@
 //! The estimation tables of a written scenario file: `[filter]` and
 //! `[[filters]]`.
 
-use crate::scenario::{ErrorModelKind, FadeBlock, FilterKind, MeasurementKind, Scenario};
+use crate::scenario::{ErrorModelKind, FilterKind, MeasurementKind, Scenario};
 use kestrel::sim::ImuErrors;
 
-use super::emit::{number, Writer};
 use super::emit_sections::decimal_deg;
 use super::emit_sensors::imu_errors;
-use super::units::{ACCEL, ANGLE, GYRO_RATE, RATIO, SI};
-use crate::process::filter_params::{filter_params, Param};
+use crate::config::units::{ACCEL, ANGLE, GYRO_RATE, RATIO, SI};
+use crate::config::write::{number, Writer};
 
 pub(super) fn filter(w: &mut Writer, s: &Scenario) {
     let f = &s.filter;
@@ -151,72 +150,8 @@ pub(super) fn filter(w: &mut Writer, s: &Scenario) {
 
 pub(super) fn filter_entry(w: &mut Writer, f: &FilterKind) {
     w.table("filters", true, &format!("Filter \"{}\".", f.label()));
-    let (kind, what) = kind_name(f);
-    w.string("kind", kind, what);
-    for p in filter_params(f) {
-        match p {
-            Param::Number("threshold", v) => {
-                w.num("threshold_m_s", v, "|v_INS − v_odometer| limit, m/s, > 0")
-            }
-            Param::Number(key, v) => w.num(key, v, comment(f, key)),
-            Param::Window(n) => w.raw(
-                "window",
-                &n.to_string(),
-                "innovations in the R window: 10, 20 or 50",
-            ),
-            Param::Fade(states) => fade(w, states),
-        }
+    w.string("kind", f.name(), f.summary());
+    for p in f.params() {
+        w.raw(p.key, &p.value.to_string(), p.comment);
     }
-}
-
-/// The `kind` value of a filter and what it is.
-fn kind_name(f: &FilterKind) -> (&'static str, &'static str) {
-    match f {
-        FilterKind::Standard => ("standard", "no adaptation"),
-        FilterKind::SageHusaFading { .. } => ("sage-husa-fading", "Sage-Husa R + fading memory"),
-        FilterKind::ImprovedAdaptive { .. } => {
-            ("improved-adaptive", "Sage-Husa + fading + χ² compression")
-        }
-        FilterKind::FederatedUkf { .. } => {
-            ("federated-ukf", "federated: local GNSS KF + local UKF")
-        }
-        FilterKind::FederatedSrUkf { .. } => {
-            ("federated-sr-ukf", "federated with the square-root UKF")
-        }
-        FilterKind::IctErekf { .. } => ("ict-erekf", "innovation χ² tests + robust R inflation"),
-        FilterKind::MaxThreshold { .. } => {
-            ("max-threshold", "isolate the odometer on a speed mismatch")
-        }
-        FilterKind::FuzzyAdaptive { .. } => ("fuzzy-adaptive", "fuzzy odometer gain + windowed R"),
-        FilterKind::StrongTrackingFading { .. } => {
-            ("strong-tracking-fading", "suboptimal fading factor")
-        }
-    }
-}
-
-/// The comment of the numeric parameter `key` of `f`.
-fn comment(f: &FilterKind, key: &str) -> &'static str {
-    let strong_tracking = matches!(f, FilterKind::StrongTrackingFading { .. });
-    match key {
-        "forgetting" => "Sage-Husa forgetting factor b, (0, 1]",
-        "reserve" => "reserve coefficient γ of the divergence test, ≥ 1",
-        "lambda_max" if strong_tracking => "upper clamp of λ, ≥ 1 (inf: none)",
-        "lambda_max" => "upper clamp of the fading factor λ, ≥ 1 (inf: none)",
-        "significance" if matches!(f, FilterKind::IctErekf { .. }) => "α of the tests, (0, 0.5)",
-        "significance" => "α of the χ² compression threshold, (0, 0.5)",
-        "alpha" => "sigma-point spread α, (0, 1]",
-        "beta" => "prior-knowledge β (2: Gaussian), ≥ 0",
-        "kappa" => "secondary scaling κ",
-        "rho" => "forgetting factor ρ of the innovation covariance, (0, 1]",
-        "softening" => "softening β on R, ≥ 1",
-        _ => "",
-    }
-}
-
-fn fade(w: &mut Writer, states: FadeBlock) {
-    w.string(
-        "fade_states",
-        states.name(),
-        "states the fade scales: \"all\" (papers), \"velocity-position\", \"attitude-velocity-position\"",
-    );
 }

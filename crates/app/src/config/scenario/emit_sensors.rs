@@ -5,8 +5,8 @@ use kestrel::sim::{
     GnssConfig, ImuErrors, OdometerConfig, OdometerFaultKind, OutlierKind, ReportedStd, TimeWindow,
 };
 
-use super::emit::{number, Writer};
-use super::units::{ACCEL, ACCEL_NOISE, GYRO_NOISE, GYRO_RATE, RATIO, SI};
+use crate::config::units::{ACCEL, ACCEL_NOISE, GYRO_NOISE, GYRO_RATE, RATIO, SI};
+use crate::config::write::{number, Writer};
 
 pub(super) fn imu(w: &mut Writer, s: &Scenario) {
     w.table(

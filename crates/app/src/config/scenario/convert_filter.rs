@@ -1,0 +1,168 @@
+//! `[filter]` and `[[filters]]` to the scenario's filter set-up and kinds.
+
+use crate::scenario::{
+    ErrorModelKind, FilterKind, FilterSetup, InitialUncertainty, MeasurementKind, MeasurementNoise,
+};
+use kestrel::nav::nalgebra::Vector3;
+
+use super::convert_sensors::imu_spec;
+use super::schema_filter::{ErrorModelName, FilterSection, MeasurementName, P0Section, RSection};
+use crate::config::check::{bad, join, need, num, quantity, scalar_quantity, vec3, Range, Res};
+use crate::config::filter::{read_kind, Keys, Kinds};
+use crate::config::units::{ACCEL, ANGLE, GYRO_RATE, RATIO, SI};
+
+/// `[filter]`.
+pub(super) fn setup(f: &FilterSection) -> Res<FilterSetup> {
+    let p = "filter";
+    let tau_key = join(p, "odometer_scale_tau_s");
+    let scale_key = join(p, "scale_tau_s");
+    let error_model = match f.error_model {
+        ErrorModelName::Ins15 => ErrorModelKind::Ins15,
+        ErrorModelName::Ins18 => ErrorModelKind::Ins18,
+        ErrorModelName::Ins21 => ErrorModelKind::Ins21 {
+            scale_tau: match f.scale_tau_s {
+                Some(t) => num(&scale_key, t, Range::Tau)?,
+                None => f64::INFINITY,
+            },
+        },
+        ErrorModelName::Odometer16 => {
+            let tau = need(
+                &tau_key,
+                f.odometer_scale_tau_s,
+                "the `odometer16` model needs it",
+            )?;
+            ErrorModelKind::Odometer16 {
+                scale_tau: num(&tau_key, tau, Range::Tau)?,
+            }
+        }
+    };
+    if !matches!(error_model, ErrorModelKind::Odometer16 { .. }) && f.odometer_scale_tau_s.is_some()
+    {
+        return Err(bad(tau_key, "applies only to error_model = \"odometer16\""));
+    }
+    let ins21 = matches!(error_model, ErrorModelKind::Ins21 { .. });
+    if !ins21 && f.scale_tau_s.is_some() {
+        return Err(bad(scale_key, "applies only to error_model = \"ins21\""));
+    }
+    let p0 = p0(&f.p0)?;
+    if !ins21 && (p0.gyro_scale != Vector3::zeros() || p0.accel_scale != Vector3::zeros()) {
+        return Err(bad(
+            "filter.p0.gyro_scale / accel_scale".to_owned(),
+            "scale-factor states exist in error_model = \"ins21\" only",
+        ));
+    }
+    let mounting = match f.odometer_mounting_deg {
+        Some(m) => {
+            for (i, &x) in m.iter().enumerate() {
+                num(&format!("{p}.odometer_mounting_deg[{i}]"), x, Range::Any)?;
+            }
+            m.map(f64::to_radians)
+        }
+        None => [0.0; 2],
+    };
+    Ok(FilterSetup {
+        error_model,
+        measurement: match f.measurement {
+            MeasurementName::GnssPositionVelocity => MeasurementKind::GnssPositionVelocity,
+            MeasurementName::AttitudeVelocityPosition => MeasurementKind::AttitudeVelocityPosition,
+            MeasurementName::OdometerVelocity => MeasurementKind::OdometerVelocity,
+        },
+        imu_model: imu_spec(&f.imu)?,
+        p0,
+        r: r(&f.r)?,
+        lever_arm: f.lever_arm_m.map_or(Ok(Vector3::zeros()), |l| {
+            vec3(&join(p, "lever_arm_m"), l, Range::Any)
+        })?,
+        odometer_mounting: mounting,
+    })
+}
+
+fn p0(s: &P0Section) -> Res<InitialUncertainty> {
+    let p = "filter.p0";
+    let nn = Range::NonNegative;
+    let [deg, arcmin, arcsec] = ANGLE;
+    let [dph] = GYRO_RATE;
+    let [ug, mg] = ACCEL;
+    let [ppm, percent] = RATIO;
+    let z = |v: Option<Vector3<f64>>| v.unwrap_or_else(Vector3::zeros);
+    Ok(InitialUncertainty {
+        attitude: z(quantity(
+            p,
+            "attitude",
+            &[
+                (deg, s.attitude_deg),
+                (arcmin, s.attitude_arcmin),
+                (arcsec, s.attitude_arcsec),
+            ],
+            nn,
+        )?),
+        velocity: z(quantity(p, "velocity_m_s", &[(&SI, s.velocity_m_s)], nn)?),
+        position: z(quantity(p, "position_m", &[(&SI, s.position_m)], nn)?),
+        gyro_bias: z(quantity(
+            p,
+            "gyro_bias",
+            &[(dph, s.gyro_bias_deg_per_h)],
+            nn,
+        )?),
+        gyro_markov: z(quantity(
+            p,
+            "gyro_markov",
+            &[(dph, s.gyro_markov_deg_per_h)],
+            nn,
+        )?),
+        accel_bias: z(quantity(
+            p,
+            "accel_bias",
+            &[(ug, s.accel_bias_ug), (mg, s.accel_bias_mg)],
+            nn,
+        )?),
+        gyro_scale: z(quantity(
+            p,
+            "gyro_scale",
+            &[(ppm, s.gyro_scale_ppm), (percent, s.gyro_scale_percent)],
+            nn,
+        )?),
+        accel_scale: z(quantity(
+            p,
+            "accel_scale",
+            &[(ppm, s.accel_scale_ppm), (percent, s.accel_scale_percent)],
+            nn,
+        )?),
+        odometer_scale: scalar_quantity(
+            p,
+            "odometer_scale",
+            &[
+                (ppm, s.odometer_scale_ppm),
+                (percent, s.odometer_scale_percent),
+            ],
+            nn,
+        )?
+        .unwrap_or(0.0),
+    })
+}
+
+fn r(s: &RSection) -> Res<MeasurementNoise> {
+    let p = "filter.r";
+    let nn = Range::NonNegative;
+    let [deg, arcmin, arcsec] = ANGLE;
+    Ok(MeasurementNoise {
+        position: quantity(p, "position_m", &[(&SI, s.position_m)], nn)?,
+        velocity: quantity(p, "velocity_m_s", &[(&SI, s.velocity_m_s)], nn)?,
+        attitude: quantity(
+            p,
+            "attitude",
+            &[
+                (deg, s.attitude_deg),
+                (arcmin, s.attitude_arcmin),
+                (arcsec, s.attitude_arcsec),
+            ],
+            nn,
+        )?,
+        odometer: quantity(p, "odometer_m_s", &[(&SI, s.odometer_m_s)], nn)?,
+    })
+}
+
+/// One `[[filters]]` entry at key path `p`.
+pub(super) fn filter(p: &str, e: &Keys) -> Res<FilterKind> {
+    read_kind(e, p, None, Kinds::All)
+}
