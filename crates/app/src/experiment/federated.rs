@@ -13,21 +13,23 @@
 //! study (`f32` or `f64`, error states scaled by a diagonal `D`): the
 //! models are built in `f64`, scaled, and rounded to the filter's type.
 
-use kestrel::adaptive::federated::{FederatedFilter, PredictSet, Sharing};
+use kestrel::adaptive::federated::{FederatedFilter, FusionError, PredictSet, Sharing};
 use kestrel::form::UpdateForm;
 use kestrel::models::LinearProcess;
 use kestrel::nalgebra::{SMatrix, SVector, Vector3};
 use kestrel::real::lit;
 use kestrel::{Ekf, Filter, FilterError, Quantity, Real};
 
+use super::data::SensorSample;
 use super::error::RunError;
 use super::record::Adaptation;
-use super::run::{Feed, Job};
+use super::run::{Feed, Job, Solved};
 use crate::scenario::{ErrorModelKind, MeasurementKind, Scenario};
 use kestrel::nav::engine::{feed_back, ErrorSystem, Ins15, SensorCorrections};
 use kestrel::nav::error_model::ForcingMean;
-use kestrel::nav::measurement::{ErrorMeasurement, GnssAntenna, InsContext};
+use kestrel::nav::measurement::{ErrorMeasurement, GnssAntenna, GnssFix, InsContext};
 use kestrel::nav::mechanisation::Strapdown;
+use kestrel::nav::Ellipsoid;
 use kestrel::real::to_f64;
 
 /// Runs the federated filter whose velocity local is `local` (its state
@@ -70,7 +72,33 @@ where
     F: UpdateForm<T, 15, ErrorMeasurement<T, 15, 3>, 3> + 'a,
     (Ekf<T, 15>, Filter<T, 15, F>): for<'m> PredictSet<'m, T, 15, 2, LinearProcess<T, 15>>,
 {
+    let gnss_std = gnss_std(&job)?;
     let label = job.label;
+    let invalid = |error| RunError::InvalidParameter {
+        filter: label,
+        error,
+    };
+    let x0 = SVector::<T, 15>::zeros();
+    let p0t = p0.map(lit::<T>);
+    let locals = (Ekf::new(x0, p0t).map_err(invalid)?, local.map_err(invalid)?);
+    let fed = match FederatedFilter::new(locals, Sharing::edop(), x0, p0t) {
+        Ok(f) => f,
+        Err(error) => {
+            let e = RunError::Fusion {
+                filter: label,
+                time: job.start.time,
+                error,
+            };
+            return Ok(job.stillborn(e));
+        }
+    };
+    let mut federation = Federation::new(&job, fed, d, gnss_std);
+    Ok(job.driver(move |sample| federation.step(sample)))
+}
+
+/// The σ of the GNSS position and velocity (the filter's `R`), or why the
+/// scenario does not suit the federated filter.
+fn gnss_std(job: &Job<'_>) -> Result<(Vector3<f64>, Vector3<f64>), RunError> {
     let sc = job.scenario;
     let s = &sc.filter;
     if (s.error_model, s.measurement)
@@ -83,74 +111,160 @@ where
     let (Some(_), Some(pos_std), Some(vel_std)) = (&sc.gnss, s.r.position, s.r.velocity) else {
         return Err(job.incompatible("no GNSS receiver or no GNSS R"));
     };
-    let invalid = |error| RunError::InvalidParameter {
-        filter: label,
-        error,
-    };
-    let x0 = SVector::<T, 15>::zeros();
-    let p0t = p0.map(lit::<T>);
-    let locals = (Ekf::new(x0, p0t).map_err(invalid)?, local.map_err(invalid)?);
-    let start = job.start;
-    let mut fed = match FederatedFilter::new(locals, Sharing::edop(), x0, p0t) {
-        Ok(f) => f,
-        Err(error) => {
-            let e = RunError::Fusion {
-                filter: label,
-                time: start.time,
-                error,
-            };
-            return Ok(job.stillborn(e));
-        }
-    };
+    Ok((pos_std, vel_std))
+}
 
-    let inv = d.map(|v| 1.0 / v);
-    let dd = SMatrix::<f64, 15, 15>::from_diagonal(d);
-    let di = SMatrix::<f64, 15, 15>::from_diagonal(&inv);
-    let earth = sc.earth;
-    let system = Ins15::new(s.imu_model);
-    let antenna = GnssAntenna::new(s.lever_arm);
-    let mut ins = Strapdown::new(earth, sc.initial_state(&start));
-    let mut corrections = SensorCorrections::default();
-    let mut forcing = ForcingMean::default();
-    let mut omega_ib = Vector3::zeros();
-    let interval = job.options.covariance_interval;
-    Ok(job.driver(move |sample| {
-        let time = sample.truth.time;
-        let fusion = |error| RunError::Fusion {
-            filter: label,
-            time,
-            error,
-        };
-        let failed = |error| RunError::Filter {
-            filter: label,
-            time,
-            error,
-        };
-        let inc = corrections.imu.compensate(&sample.imu);
-        ins.step(&inc);
-        if inc.dt > 0.0 {
-            omega_ib = inc.dtheta / inc.dt;
+/// The local filters of the federation: an EKF on the position, the
+/// velocity local `F` (UKF or SR-UKF) on the velocity.
+type Locals<T, F> = (Ekf<T, 15>, Filter<T, 15, F>);
+
+/// The federated loop's state from one sample to the next: the
+/// federation (in `T`, on the scaled error states), the INS it corrects
+/// (in `f64`) and what the propagation collects between covariance epochs.
+struct Federation<T: Real, F> {
+    label: &'static str,
+    fed: FederatedFilter<T, 15, 2, Locals<T, F>>,
+    /// The diagonal of `D⁻¹` (scaled error state to natural units).
+    inv: SVector<f64, 15>,
+    /// `D` and `D⁻¹` as matrices, to scale `Φ`, `Q` and `H`.
+    dd: SMatrix<f64, 15, 15>,
+    di: SMatrix<f64, 15, 15>,
+    earth: Ellipsoid,
+    system: Ins15,
+    antenna: GnssAntenna,
+    ins: Strapdown,
+    corrections: SensorCorrections,
+    /// The specific force and rate over the current propagation interval.
+    forcing: ForcingMean,
+    /// The last sample's angular rate (for the lever-arm velocity).
+    omega_ib: Vector3<f64>,
+    /// The covariance propagation interval, s.
+    interval: f64,
+    /// The GNSS position and velocity σ.
+    gnss_std: (Vector3<f64>, Vector3<f64>),
+}
+
+impl<T, F> Federation<T, F>
+where
+    T: Real,
+    F: UpdateForm<T, 15, ErrorMeasurement<T, 15, 3>, 3>,
+    Locals<T, F>: for<'m> PredictSet<'m, T, 15, 2, LinearProcess<T, 15>>,
+{
+    /// The loop of `job` on the federation `fed` and the scaling `d`.
+    fn new(
+        job: &Job<'_>,
+        fed: FederatedFilter<T, 15, 2, Locals<T, F>>,
+        d: &SVector<f64, 15>,
+        gnss_std: (Vector3<f64>, Vector3<f64>),
+    ) -> Self {
+        let sc = job.scenario;
+        let s = &sc.filter;
+        let inv = d.map(|v| 1.0 / v);
+        Self {
+            label: job.label,
+            fed,
+            dd: SMatrix::<f64, 15, 15>::from_diagonal(d),
+            di: SMatrix::<f64, 15, 15>::from_diagonal(&inv),
+            inv,
+            earth: sc.earth,
+            system: Ins15::new(s.imu_model),
+            antenna: GnssAntenna::new(s.lever_arm),
+            ins: Strapdown::new(sc.earth, sc.initial_state(&job.start)),
+            corrections: SensorCorrections::default(),
+            forcing: ForcingMean::default(),
+            omega_ib: Vector3::zeros(),
+            interval: job.options.covariance_interval,
+            gnss_std,
         }
-        forcing.add(&ins, inc.dt);
+    }
+
+    /// One sample: the mechanisation, the propagation when due and, at a
+    /// fix with velocity, the local updates, the fusion and the feedback.
+    fn step(&mut self, sample: &SensorSample) -> Result<Option<Solved>, RunError> {
+        let at = At {
+            filter: self.label,
+            time: sample.truth.time,
+        };
+        let inc = self.corrections.imu.compensate(&sample.imu);
+        self.ins.step(&inc);
+        if inc.dt > 0.0 {
+            self.omega_ib = inc.dtheta / inc.dt;
+        }
+        self.forcing.add(&self.ins, inc.dt);
+        let (pos_std, vel_std) = self.gnss_std;
         let fix = sample
             .gnss
             .map(|g| g.value.with_std(pos_std, vel_std))
             .filter(|f| f.vel.is_some());
         // Propagate per interval, and up to the sample before an update.
-        if forcing.dt() > 0.0 && (forcing.dt() >= interval - 1e-9 || fix.is_some()) {
-            let model = system.process(&earth, ins.state(), &forcing);
-            let phi = dd * model.phi() * di;
-            let q = dd * model.qd() * dd;
-            let scaled = LinearProcess::new(phi.map(lit::<T>), q.map(lit::<T>));
-            fed.predict(&scaled, lit(forcing.dt())).map_err(fusion)?;
-            forcing.clear();
+        let dt = self.forcing.dt();
+        if dt > 0.0 && (dt >= self.interval - 1e-9 || fix.is_some()) {
+            self.propagate(at)?;
         }
         let Some(fix) = fix else {
             return Ok(None);
         };
-        let ctx = InsContext::new(earth, *ins.state(), omega_ib);
-        let pv = antenna.position_velocity::<f64, 15, _>(&system, &ctx, &fix);
-        let h = pv.h() * di;
+        let adaptation = self.update(at, &fix)?;
+        // The fused covariance is not a single filter's: no NEES.
+        Ok(Some((*self.ins.state(), adaptation, None)))
+    }
+
+    /// Propagates every local over the interval collected, with the model
+    /// scaled to `x' = D x` and rounded to `T`.
+    fn propagate(&mut self, at: At) -> Result<(), RunError> {
+        let model = self
+            .system
+            .process(&self.earth, self.ins.state(), &self.forcing);
+        let phi = self.dd * model.phi() * self.di;
+        let q = self.dd * model.qd() * self.dd;
+        let scaled = LinearProcess::new(phi.map(lit::<T>), q.map(lit::<T>));
+        self.fed
+            .predict(&scaled, lit(self.forcing.dt()))
+            .map_err(|e| at.fusion(e))?;
+        self.forcing.clear();
+        Ok(())
+    }
+
+    /// The position local's and the velocity local's updates with `fix`,
+    /// their fusion and the closed-loop feedback.
+    fn update(&mut self, at: At, fix: &GnssFix) -> Result<Adaptation, RunError> {
+        let (pos, vel) = self.measurements(fix);
+        let d0 = self
+            .fed
+            .locals_mut()
+            .0
+            .update_detailed(&pos, &pos.z())
+            .map_err(|e| at.failed(e))?;
+        self.fed.record(0, &d0.report).map_err(|e| at.fusion(e))?;
+        let d1 = self
+            .fed
+            .locals_mut()
+            .1
+            .update_detailed(&vel, &vel.z())
+            .map_err(|e| at.failed(e))?;
+        self.fed.record(1, &d1.report).map_err(|e| at.fusion(e))?;
+        self.fed.fuse().map_err(|e| at.fusion(e))?;
+        self.feed_back(at)?;
+        Ok(Adaptation {
+            nis: to_f64(d0.report.nis + d1.report.nis),
+            rejected: d0.report.rejected && d1.report.rejected,
+            noise_trace: to_f64(d0.noise.trace() + d1.noise.trace()),
+            ..Adaptation::default()
+        })
+    }
+
+    /// The GNSS position-velocity measurement of `fix` split into the
+    /// position local's rows and the velocity local's, on the scaled
+    /// states and rounded to `T`.
+    fn measurements(
+        &self,
+        fix: &GnssFix,
+    ) -> (ErrorMeasurement<T, 15, 3>, ErrorMeasurement<T, 15, 3>) {
+        let ctx = InsContext::new(self.earth, *self.ins.state(), self.omega_ib);
+        let pv = self
+            .antenna
+            .position_velocity::<f64, 15, _>(&self.system, &ctx, fix);
+        let h = pv.h() * self.di;
         let z = pv.z();
         let r = pv.noise_covariance().diagonal();
         let pos = ErrorMeasurement::<T, 15, 3>::new(
@@ -163,39 +277,57 @@ where
             h.fixed_rows::<3>(3).into_owned(),
             r.fixed_rows::<3>(3).into_owned(),
         );
-        let d0 = fed
-            .locals_mut()
-            .0
-            .update_detailed(&pos, &pos.z())
-            .map_err(failed)?;
-        fed.record(0, &d0.report).map_err(fusion)?;
-        let d1 = fed
-            .locals_mut()
-            .1
-            .update_detailed(&vel, &vel.z())
-            .map_err(failed)?;
-        fed.record(1, &d1.report).map_err(fusion)?;
-        fed.fuse().map_err(fusion)?;
-        // Closed loop: feed the fused estimate back (in f64, natural
-        // units), zero every local.
-        let dx = fed.state().map(to_f64).component_mul(&inv);
+        (pos, vel)
+    }
+
+    /// Closed loop: feeds the fused estimate back (in f64, natural units)
+    /// and zeroes every local.
+    fn feed_back(&mut self, at: At) -> Result<(), RunError> {
+        let dx = self.fed.state().map(to_f64).component_mul(&self.inv);
         if let Some(index) = dx.iter().position(|v| !v.is_finite()) {
-            return Err(failed(FilterError::NonFinite {
+            return Err(at.failed(FilterError::NonFinite {
                 what: Quantity::UpdatedState,
                 row: index,
                 col: 0,
             }));
         }
-        feed_back::<f64, 15, Ins15>(&dx, &earth, ins.state_mut(), &mut corrections);
-        fed.locals_mut().0.set_state(x0).map_err(failed)?;
-        fed.locals_mut().1.set_state(x0).map_err(failed)?;
-        let adaptation = Adaptation {
-            nis: to_f64(d0.report.nis + d1.report.nis),
-            rejected: d0.report.rejected && d1.report.rejected,
-            noise_trace: to_f64(d0.noise.trace() + d1.noise.trace()),
-            ..Adaptation::default()
-        };
-        // The fused covariance is not a single filter's: no NEES.
-        Ok(Some((*ins.state(), adaptation, None)))
-    }))
+        feed_back::<f64, 15, Ins15>(
+            &dx,
+            &self.earth,
+            self.ins.state_mut(),
+            &mut self.corrections,
+        );
+        let x0 = SVector::<T, 15>::zeros();
+        let locals = self.fed.locals_mut();
+        locals.0.set_state(x0).map_err(|e| at.failed(e))?;
+        locals.1.set_state(x0).map_err(|e| at.failed(e))?;
+        Ok(())
+    }
+}
+
+/// The filter and the sample's time, naming a failure.
+#[derive(Clone, Copy)]
+struct At {
+    filter: &'static str,
+    time: f64,
+}
+
+impl At {
+    /// A failure of the federation.
+    fn fusion(self, error: FusionError) -> RunError {
+        RunError::Fusion {
+            filter: self.filter,
+            time: self.time,
+            error,
+        }
+    }
+
+    /// A failure of a local filter.
+    fn failed(self, error: FilterError) -> RunError {
+        RunError::Filter {
+            filter: self.filter,
+            time: self.time,
+            error,
+        }
+    }
 }

@@ -24,15 +24,18 @@
 //!   window's mean rate less the Earth rate in the body axes (with the
 //!   aligned attitude), added to `initial.gyro_bias`.
 
+use std::fs::File;
+use std::io::BufReader;
 use std::path::Path;
 
+use kestrel::nav::measurement::GnssFix;
 use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::{Euler, ImuIncrement, NavState};
 
 use super::pipeline::GnssInput;
 use crate::config::process::{AlignmentSettings, Settings, YawSource};
 use crate::{Error, InputError};
-use kestrel_io::gins::ImuReader;
+use kestrel_io::gins::{ImuReader, ImuRecord};
 
 /// What the alignment found.
 #[derive(Clone, Debug, PartialEq)]
@@ -64,165 +67,36 @@ pub(crate) fn align(
     settings: &mut Settings,
 ) -> Result<AlignmentReport, Error> {
     let start = settings.start.time;
-    let end = start + a.static_time;
     let mut reader = ImuReader::open_with_format(imu, &settings.imu_format, settings.week, start)?;
-    // The static window: mean rate and specific force, and the spread.
-    let (mut dtheta, mut dvel, mut seconds) = (Vector3::zeros(), Vector3::zeros(), 0.0);
-    let (mut sum, mut squares) = (Vector3::<f64>::zeros(), Vector3::<f64>::zeros());
-    let (mut samples, mut previous, mut last_line) = (0usize, start, 0usize);
-    let mut after = None;
-    for record in reader.by_ref() {
-        let record = record?;
-        if record.time <= start {
-            continue;
-        }
-        if record.time > end + 1e-9 {
-            after = Some(record);
-            break;
-        }
-        let inc: ImuIncrement = record.increment(previous);
-        if inc.dt > 0.0 {
-            let f = inc.dvel / inc.dt;
-            sum += f;
-            squares += f.component_mul(&f);
-            dtheta += inc.dtheta;
-            dvel += inc.dvel;
-            seconds += inc.dt;
-            samples += 1;
-        }
-        previous = record.time;
-        last_line = record.line;
-    }
-    if samples < 2 || seconds < 0.5 * a.static_time {
-        return Err(InputError::file(
-            imu,
-            format!(
-                "alignment: the IMU file has {samples} samples covering {seconds} s of the \
-                 static window from initial.time {start} s (alignment.static_time = {} s): \
-                 too little to level",
-                a.static_time
-            ),
-        )
-        .into());
-    }
-    let n = samples as f64;
-    let variance = (squares - sum.component_mul(&sum) / n) / (n - 1.0);
-    let spread = variance.map(|v| v.max(0.0)).sum().sqrt();
-    if spread > a.max_accel_std {
-        return Err(InputError::at(
-            imu,
-            last_line,
-            1,
-            format!(
-                "alignment: the vehicle is not standing still from {start} s to {previous} s \
-                 (specific-force spread {spread:.3} m/s² > alignment.max_accel_std = {} m/s²)",
-                a.max_accel_std
-            ),
-        )
-        .into());
-    }
-    let f = dvel / seconds;
-    let w = dtheta / seconds;
-    let roll = (-f.y).atan2(-f.z);
-    let pitch = f.x.atan2((f.y * f.y + f.z * f.z).sqrt());
-    let earth = settings.earth;
+    let window = StaticWindow::read(&mut reader, start, start + a.static_time)?;
+    let spread = window.spread(imu, a, start)?;
+    let level = window.level();
     let mut report = AlignmentReport {
-        window: (start, previous),
-        samples,
+        window: (start, window.end),
+        samples: window.samples,
         accel_spread: spread,
         attitude: [0.0; 3],
         yaw: a.yaw,
         course_fix: None,
         gyro_bias: None,
-        start: previous,
+        start: window.end,
     };
     let new_start = match a.yaw {
-        YawSource::Gyrocompass => {
-            let lat = settings.start.pos.lat;
-            let level = Euler::new(roll, pitch, 0.0).to_quaternion();
-            let wl = level * w;
-            let expected = earth.omega_ie * lat.cos();
-            let measured = wl.x.hypot(wl.y);
-            if !(0.5 * expected..=1.5 * expected).contains(&measured) {
-                let dph = |x: f64| x.to_degrees() * 3600.0;
-                return Err(InputError::file(
-                    imu,
-                    format!(
-                        "alignment: gyrocompassing measured a horizontal rate of {:.2} °/h where \
-                         the Earth's is {:.2} °/h at this latitude: the gyro biases are too large \
-                         for it; use yaw = \"gnss-course\"",
-                        dph(measured),
-                        dph(expected)
-                    ),
-                )
-                .into());
-            }
-            let yaw = (-wl.y).atan2(wl.x);
-            NavState::new(
-                previous,
-                settings.start.pos,
-                Vector3::zeros(),
-                Euler::new(roll, pitch, yaw),
-            )
-        }
+        YawSource::Gyrocompass => gyrocompass(imu, &window, level, settings)?,
         YawSource::GnssCourse => {
             let Some(gnss) = gnss else {
                 return Err(Error::Failed(
                     "alignment: yaw = \"gnss-course\" needs a GNSS file (--gnss)".into(),
                 ));
             };
-            let mut fixes = GnssInput::open(gnss, &settings.gnss_format, settings.week)?;
-            let fix = loop {
-                let Some(fix) = fixes.next().transpose()? else {
-                    return Err(InputError::file(
-                        gnss,
-                        format!(
-                            "alignment: no fix after {previous} s with a horizontal speed of \
-                             alignment.min_speed = {} m/s or more (and a velocity)",
-                            a.min_speed
-                        ),
-                    )
-                    .into());
-                };
-                let Some(v) = fix.vel else {
-                    if fix.time > previous {
-                        return Err(InputError::file(
-                            gnss,
-                            "alignment: yaw = \"gnss-course\" needs GNSS velocity (13-column \
-                             lines)",
-                        )
-                        .into());
-                    }
-                    continue;
-                };
-                if fix.time > previous && v.x.hypot(v.y) >= a.min_speed {
-                    break fix;
-                }
-            };
-            let v = fix.vel.unwrap_or_default();
-            // The last IMU sample at or before the fix.
-            let mut t = previous;
-            let mut next = after;
-            loop {
-                match next {
-                    Some(r) if r.time <= fix.time => t = r.time,
-                    _ => break,
-                }
-                next = reader.next().transpose()?;
-            }
-            let yaw = v.y.atan2(v.x);
-            let att = Euler::new(roll, pitch, yaw);
-            let at_antenna = earth.displace(&fix.pos, &(-v * (fix.time - t)));
-            let state = NavState::new(t, at_antenna, v, att);
-            let lever = state.att * settings.lever_arm;
-            let pos = earth.displace(&at_antenna, &(-lever));
-            report.course_fix = Some((fix.time, v.x.hypot(v.y)));
-            NavState { pos, ..state }
+            let (state, course_fix) = gnss_course(gnss, &mut reader, &window, level, a, settings)?;
+            report.course_fix = Some(course_fix);
+            state
         }
     };
     if a.gyro_bias && a.yaw == YawSource::GnssCourse {
-        let w_ie = earth.earth_rate_ned(new_start.pos.lat);
-        let bias = w - new_start.att.inverse() * w_ie;
+        let w_ie = settings.earth.earth_rate_ned(new_start.pos.lat);
+        let bias = window.rate() - new_start.att.inverse() * w_ie;
         settings.initial_imu.gyro += bias;
         let dph = |x: f64| x.to_degrees() * 3600.0;
         report.gyro_bias = Some([dph(bias.x), dph(bias.y), dph(bias.z)]);
@@ -232,4 +106,222 @@ pub(crate) fn align(
     report.start = new_start.time;
     settings.start = new_start;
     Ok(report)
+}
+
+/// The static window at the start: the sums over its IMU samples.
+struct StaticWindow {
+    /// The summed angle and velocity increments and their time span, s.
+    dtheta: Vector3<f64>,
+    dvel: Vector3<f64>,
+    seconds: f64,
+    /// The sum and the sum of squares of the specific force, per sample
+    /// (for its spread).
+    sum: Vector3<f64>,
+    squares: Vector3<f64>,
+    /// Samples summed.
+    samples: usize,
+    /// The time and line of the last sample in the window (its start
+    /// before any).
+    end: f64,
+    last_line: usize,
+    /// The first sample after the window.
+    after: Option<ImuRecord>,
+}
+
+impl StaticWindow {
+    /// Sums the samples of `reader` after `start` up to `end`.
+    fn read(reader: &mut ImuReader<BufReader<File>>, start: f64, end: f64) -> Result<Self, Error> {
+        let mut w = Self {
+            dtheta: Vector3::zeros(),
+            dvel: Vector3::zeros(),
+            seconds: 0.0,
+            sum: Vector3::zeros(),
+            squares: Vector3::zeros(),
+            samples: 0,
+            end: start,
+            last_line: 0,
+            after: None,
+        };
+        for record in reader.by_ref() {
+            let record = record?;
+            if record.time <= start {
+                continue;
+            }
+            if record.time > end + 1e-9 {
+                w.after = Some(record);
+                break;
+            }
+            let inc: ImuIncrement = record.increment(w.end);
+            if inc.dt > 0.0 {
+                let f = inc.dvel / inc.dt;
+                w.sum += f;
+                w.squares += f.component_mul(&f);
+                w.dtheta += inc.dtheta;
+                w.dvel += inc.dvel;
+                w.seconds += inc.dt;
+                w.samples += 1;
+            }
+            w.end = record.time;
+            w.last_line = record.line;
+        }
+        Ok(w)
+    }
+
+    /// The spread of the specific force over the window, m/s²; an error
+    /// when the window is too short to level or the vehicle moved.
+    fn spread(&self, imu: &Path, a: &AlignmentSettings, start: f64) -> Result<f64, Error> {
+        let (samples, seconds) = (self.samples, self.seconds);
+        if samples < 2 || seconds < 0.5 * a.static_time {
+            return Err(InputError::file(
+                imu,
+                format!(
+                    "alignment: the IMU file has {samples} samples covering {seconds} s of the \
+                     static window from initial.time {start} s (alignment.static_time = {} s): \
+                     too little to level",
+                    a.static_time
+                ),
+            )
+            .into());
+        }
+        let n = samples as f64;
+        let variance = (self.squares - self.sum.component_mul(&self.sum) / n) / (n - 1.0);
+        let spread = variance.map(|v| v.max(0.0)).sum().sqrt();
+        if spread > a.max_accel_std {
+            return Err(InputError::at(
+                imu,
+                self.last_line,
+                1,
+                format!(
+                    "alignment: the vehicle is not standing still from {start} s to {} s \
+                     (specific-force spread {spread:.3} m/s² > alignment.max_accel_std = {} m/s²)",
+                    self.end, a.max_accel_std
+                ),
+            )
+            .into());
+        }
+        Ok(spread)
+    }
+
+    /// The mean angular rate over the window, rad/s.
+    fn rate(&self) -> Vector3<f64> {
+        self.dtheta / self.seconds
+    }
+
+    /// Roll and pitch from the mean specific force, rad.
+    fn level(&self) -> (f64, f64) {
+        let f = self.dvel / self.seconds;
+        let roll = (-f.y).atan2(-f.z);
+        let pitch = f.x.atan2((f.y * f.y + f.z * f.z).sqrt());
+        (roll, pitch)
+    }
+}
+
+/// The start at the window's end, levelled by `(roll, pitch)`, its yaw
+/// from the Earth rate the gyros measured; an error when the measured
+/// horizontal rate is not the Earth's (gyro biases too large for it).
+fn gyrocompass(
+    imu: &Path,
+    window: &StaticWindow,
+    (roll, pitch): (f64, f64),
+    settings: &Settings,
+) -> Result<NavState, Error> {
+    let lat = settings.start.pos.lat;
+    let level = Euler::new(roll, pitch, 0.0).to_quaternion();
+    let wl = level * window.rate();
+    let expected = settings.earth.omega_ie * lat.cos();
+    let measured = wl.x.hypot(wl.y);
+    if !(0.5 * expected..=1.5 * expected).contains(&measured) {
+        let dph = |x: f64| x.to_degrees() * 3600.0;
+        return Err(InputError::file(
+            imu,
+            format!(
+                "alignment: gyrocompassing measured a horizontal rate of {:.2} °/h where \
+                 the Earth's is {:.2} °/h at this latitude: the gyro biases are too large \
+                 for it; use yaw = \"gnss-course\"",
+                dph(measured),
+                dph(expected)
+            ),
+        )
+        .into());
+    }
+    let yaw = (-wl.y).atan2(wl.x);
+    Ok(NavState::new(
+        window.end,
+        settings.start.pos,
+        Vector3::zeros(),
+        Euler::new(roll, pitch, yaw),
+    ))
+}
+
+/// The start at the last IMU sample at or before the first fix after the
+/// window fast enough for a course: levelled by `(roll, pitch)`, the yaw
+/// from the course, the fix's velocity and its position moved back to
+/// that sample and from the antenna to the IMU. Also the fix's time and
+/// horizontal speed.
+fn gnss_course(
+    gnss: &Path,
+    reader: &mut ImuReader<BufReader<File>>,
+    window: &StaticWindow,
+    (roll, pitch): (f64, f64),
+    a: &AlignmentSettings,
+    settings: &Settings,
+) -> Result<(NavState, (f64, f64)), Error> {
+    let fix = moving_fix(gnss, window.end, a, settings)?;
+    let v = fix.vel.unwrap_or_default();
+    // The last IMU sample at or before the fix.
+    let mut t = window.end;
+    let mut next = window.after;
+    loop {
+        match next {
+            Some(r) if r.time <= fix.time => t = r.time,
+            _ => break,
+        }
+        next = reader.next().transpose()?;
+    }
+    let earth = settings.earth;
+    let yaw = v.y.atan2(v.x);
+    let att = Euler::new(roll, pitch, yaw);
+    let at_antenna = earth.displace(&fix.pos, &(-v * (fix.time - t)));
+    let state = NavState::new(t, at_antenna, v, att);
+    let lever = state.att * settings.lever_arm;
+    let pos = earth.displace(&at_antenna, &(-lever));
+    Ok((NavState { pos, ..state }, (fix.time, v.x.hypot(v.y))))
+}
+
+/// The first fix after `after` whose horizontal speed reaches
+/// `a.min_speed`; an error when there is none or the fixes have no
+/// velocity.
+fn moving_fix(
+    gnss: &Path,
+    after: f64,
+    a: &AlignmentSettings,
+    settings: &Settings,
+) -> Result<GnssFix, Error> {
+    let mut fixes = GnssInput::open(gnss, &settings.gnss_format, settings.week)?;
+    loop {
+        let Some(fix) = fixes.next().transpose()? else {
+            return Err(InputError::file(
+                gnss,
+                format!(
+                    "alignment: no fix after {after} s with a horizontal speed of \
+                     alignment.min_speed = {} m/s or more (and a velocity)",
+                    a.min_speed
+                ),
+            )
+            .into());
+        };
+        let Some(v) = fix.vel else {
+            if fix.time > after {
+                return Err(InputError::file(
+                    gnss,
+                    "alignment: yaw = \"gnss-course\" needs GNSS velocity (13-column lines)",
+                )
+                .into());
+            }
+            continue;
+        };
+        if fix.time > after && v.x.hypot(v.y) >= a.min_speed {
+            return Ok(fix);
+        }
+    }
 }

@@ -11,12 +11,12 @@ use crate::scenario::{ErrorModelKind, FadeBlock};
 use kestrel::adapter::{NoiseAdapter, PriorAdapter};
 use kestrel::form::{CovarianceForm, PredictForm};
 use kestrel::nav::engine::{ErrorSystem, Ins15, Ins18, Ins21, LooselyCoupled, SensorCorrections};
-use kestrel::nav::measurement::{GnssAntenna, GnssFix, Odometer};
+use kestrel::nav::measurement::{GnssAntenna, GnssFix, Odometer, OdometerReading};
 use kestrel::nav::odometer::{InsOdometer16, ScaleFactorProcess};
 use kestrel::nav::Strapdown;
 use kestrel::{Ekf, FilterError, LinearizedProcess};
 
-use super::pipeline::{drive, Job};
+use super::pipeline::{drive, FileAiding, Job};
 use crate::config::process::{OdometerSettings, Settings};
 use crate::Error;
 
@@ -80,6 +80,67 @@ impl FixUpdate<3> for GnssAiding {
     }
 }
 
+/// The aiding of a GNSS-only filter: `M`-row fixes. An odometer reading
+/// is refused: the filter has no odometer error model.
+struct GnssOnly<const M: usize>(GnssAiding);
+
+impl<const N: usize, const M: usize, S, F, A> FileAiding<LooselyCoupled<f64, N, S, F, A>>
+    for GnssOnly<M>
+where
+    LooselyCoupled<f64, N, S, F, A>: AidedEngine<N, M>,
+    GnssAiding: FixUpdate<M>,
+{
+    fn gnss(
+        &mut self,
+        engine: &mut LooselyCoupled<f64, N, S, F, A>,
+        fix: &GnssFix,
+    ) -> Result<Adaptation, FilterError> {
+        self.0.fix(engine, fix)
+    }
+
+    fn odometer(
+        &mut self,
+        _: &mut LooselyCoupled<f64, N, S, F, A>,
+        _: &OdometerReading,
+    ) -> Result<Adaptation, FilterError> {
+        Err(FilterError::InvalidParameter {
+            name: "odometer",
+            valid: "absent: this filter has no odometer error model",
+        })
+    }
+}
+
+/// The aiding of the odometer filter: `M`-row fixes and the odometer
+/// readings through its processing `P`.
+struct WithOdometer<P, const M: usize> {
+    gnss: GnssAiding,
+    odometer: OdometerAiding<P>,
+}
+
+impl<const N: usize, const M: usize, S, F, A, P> FileAiding<LooselyCoupled<f64, N, S, F, A>>
+    for WithOdometer<P, M>
+where
+    LooselyCoupled<f64, N, S, F, A>: AidedEngine<N, M> + AidedEngine<N, 3>,
+    GnssAiding: FixUpdate<M>,
+    P: OdometerProcessing,
+{
+    fn gnss(
+        &mut self,
+        engine: &mut LooselyCoupled<f64, N, S, F, A>,
+        fix: &GnssFix,
+    ) -> Result<Adaptation, FilterError> {
+        FixUpdate::<M>::fix(&self.gnss, engine, fix)
+    }
+
+    fn odometer(
+        &mut self,
+        engine: &mut LooselyCoupled<f64, N, S, F, A>,
+        reading: &OdometerReading,
+    ) -> Result<Adaptation, FilterError> {
+        self.odometer.update(engine, reading)
+    }
+}
+
 /// The recorded files as the data source of a filter loop.
 struct Files<'a, 'p> {
     s: &'a Settings,
@@ -135,23 +196,11 @@ impl Files<'_, '_> {
         Engine<N, S, A>: AidedEngine<N, M>,
         GnssAiding: FixUpdate<M>,
     {
-        let gnss = gnss_aiding(self.s);
         let mut engine = engine(self.s, system, ekf(self.s, adapter, fade)?);
         if self.job.smoother.is_some() {
             engine.record_epochs();
         }
-        drive(
-            self.job,
-            &mut engine,
-            |e, f| gnss.fix(e, f),
-            // GNSS-only filters never see an odometer reading (no rate is set).
-            |_, _| {
-                Err(FilterError::InvalidParameter {
-                    name: "odometer",
-                    valid: "absent: this filter has no odometer error model",
-                })
-            },
-        )?;
+        drive(self.job, &mut engine, GnssOnly::<M>(gnss_aiding(self.s)))?;
         smooth(self.job, &mut engine)
     }
 }
@@ -217,7 +266,7 @@ fn odometer<P: OdometerProcessing>(
         scale_sigma: 0.0,
     });
     let [pitch, yaw] = o.mounting;
-    let mut aid = OdometerAiding {
+    let odometer = OdometerAiding {
         odometer: Odometer::new(o.speed_std, o.nhc_std)
             .with_mounting(pitch, yaw)
             .with_lever_arm(o.lever_arm),
@@ -232,19 +281,9 @@ fn odometer<P: OdometerProcessing>(
     let gnss = gnss_aiding(s);
     // Position-only fixes update the position, fixes with velocity both.
     let driven = if layout == GnssLayout::Position {
-        drive(
-            job,
-            &mut engine,
-            |e, f| FixUpdate::<3>::fix(&gnss, e, f),
-            |e, r| aid.update(e, r),
-        )
+        drive(job, &mut engine, WithOdometer::<P, 3> { gnss, odometer })
     } else {
-        drive(
-            job,
-            &mut engine,
-            |e, f| FixUpdate::<6>::fix(&gnss, e, f),
-            |e, r| aid.update(e, r),
-        )
+        drive(job, &mut engine, WithOdometer::<P, 6> { gnss, odometer })
     };
     driven?;
     smooth(job, &mut engine)

@@ -12,7 +12,6 @@
 //! `kestrel simulate` gives the same errors as the in-memory run.
 
 mod alignment;
-
 mod consistency;
 mod constraints;
 mod dispatch;
@@ -21,8 +20,9 @@ mod drift;
 mod evaluation;
 mod outage;
 mod pipeline;
-
+mod results;
 mod schedule;
+mod setup;
 mod sink;
 mod smooth;
 mod state_files;
@@ -30,13 +30,11 @@ mod stats;
 pub mod timing;
 mod traces;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use crate::experiment::{EpochRecord, PositionAxes};
 use crate::scenario::FilterKind;
-
-use crate::{Error, InputError};
-use kestrel_io::gins::{last_time, ImuReader, OdometerReader};
+use crate::Error;
 
 pub use crate::config::process::Settings;
 pub use crate::progress::{Progress, Silent};
@@ -50,11 +48,7 @@ pub use smooth::SmoothedReport;
 pub use stats::{ErrorStats, MotionStats, SumOfSquares};
 pub use traces::{StateRow, StateTraces, Track};
 
-use dispatch::{dispatch, GnssLayout};
-use drift::DriftTable;
-use evaluation::{Evaluation, EvaluationSetup, Truth};
-use pipeline::{GnssInput, GnssSource, Job, OdometerFile};
-use sink::{Sink, SinkSetup};
+use dispatch::dispatch;
 
 /// Where the odometer speeds come from.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -247,6 +241,8 @@ pub struct ProcessReport {
 /// ```
 pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed, Error> {
     let mut settings = crate::config::process::load(&inputs.config)?;
+    // The alignment sets the initial state (and may move the start) that
+    // everything after it reads.
     let alignment = match settings.alignment {
         Some(a) => Some(alignment::align(
             &inputs.imu,
@@ -256,401 +252,13 @@ pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed
         )?),
         None => None,
     };
-    let odo_flag = match inputs.odometer {
-        OdometerInput::None => None,
-        OdometerInput::ImuColumn => Some("--odo"),
-        OdometerInput::File(_) => Some("--odometer"),
-    };
-    if let (Some(flag), None) = (odo_flag, &settings.odometer) {
-        return Err(
-            InputError::file(&inputs.config, format!("{flag} needs an [odometer] table"))
-                .with_key("odometer")
-                .into(),
-        );
-    }
-    if inputs.odometer == OdometerInput::ImuColumn
-        && !settings.imu_format.is_gins()
-        && settings.imu_format.odometer.is_none()
-    {
-        return Err(InputError::file(
-            &inputs.config,
-            "--odo reads the odometer speed from the IMU file: give its column",
-        )
-        .with_key("imu_file.columns.odometer")
-        .into());
-    }
-    let imu = ImuReader::open_with_format(
-        &inputs.imu,
-        &settings.imu_format,
-        settings.week,
-        settings.start.time,
-    )?;
-    let (gnss, layout) = match &inputs.gnss {
-        None => (None, GnssLayout::None),
-        Some(p) => {
-            let mut g =
-                GnssSource::open(GnssInput::open(p, &settings.gnss_format, settings.week)?)?;
-            let layout = match g.peek()? {
-                None => GnssLayout::None,
-                Some(f) if f.vel.is_some() => GnssLayout::PositionVelocity,
-                Some(_) => GnssLayout::Position,
-            };
-            (Some(g), layout)
-        }
-    };
-    let truth = inputs
-        .truth
-        .as_deref()
-        .map(|p| Truth::open(p, &settings.truth.format, settings.week))
-        .transpose()?;
-    // A caller's name is a file in `out`, never a path out of it.
-    if let Some(bad) = inputs.also_written.iter().find(|n| {
-        let mut parts = Path::new(n.as_str()).components();
-        !matches!(
-            (parts.next(), parts.next()),
-            (Some(std::path::Component::Normal(_)), None)
-        )
-    }) {
-        return Err(Error::Failed(format!(
-            "also_written: `{bad}` is not a plain file name (no folders, `.` or `..`)"
-        )));
-    }
-    std::fs::create_dir_all(&inputs.out).map_err(|e| Error::io(&inputs.out, e))?;
-    let names = output_names(&inputs.also_written);
-    refuse_overwriting_inputs(inputs, &names)?;
-    remove_output_links(&inputs.out, &names)?;
-    let evaluation = match truth {
-        None => None,
-        Some(truth) => Some(compare_with(inputs, &settings, truth, "errors.csv")?),
-    };
-    let smoother = if inputs.smooth {
-        let evaluation = match inputs.truth.as_deref() {
-            None => None,
-            Some(p) => {
-                let truth = Truth::open(p, &settings.truth.format, settings.week)?;
-                Some(compare_with(
-                    inputs,
-                    &settings,
-                    truth,
-                    "errors_smoothed.csv",
-                )?)
-            }
-        };
-        Some(smooth::ForwardRecord::new(
-            &inputs.out,
-            smooth::SmoothSetup {
-                label: settings.kind.label(),
-                week: settings.week,
-                interval: settings.output_interval,
-                earth: settings.earth,
-                nav_path: inputs.out.join("smoothed.nav"),
-                csv_path: inputs.out.join("smoothed.csv"),
-                out: inputs.out.clone(),
-                evaluation,
-            },
-        )?)
-    } else {
-        None
-    };
-    let nav_path = inputs.out.join("result.nav");
-    let csv_path = inputs.out.join("result.csv");
-    // The span reported as progress: to the last line's time (GINS layout
-    // only; otherwise unknown).
-    let end = if settings.imu_format.is_gins() {
-        last_time(&inputs.imu).unwrap_or(settings.start.time)
-    } else {
-        settings.start.time
-    };
-    let label = settings.kind.label();
-    let sink = Sink::new(SinkSetup {
-        label,
-        week: settings.week,
-        interval: settings.output_interval,
-        nav_path: &nav_path,
-        csv_path: &csv_path,
-        evaluation,
-        progress: crate::progress::Ticker::new(progress, settings.start.time, end),
-    })?;
-    let mut job = Job {
-        imu,
-        gnss,
-        odometer_rate: match odo_flag {
-            Some(_) => settings.odometer.map(|o| o.rate),
-            None => None,
-        },
-        odometer_file: match &inputs.odometer {
-            OdometerInput::File(p) => Some(OdometerFile::new(OdometerReader::open(p)?)),
-            _ => None,
-        },
-        outages: inputs.outages.clone(),
-        start: settings.start.time,
-        sink,
-        fixes_used: 0,
-        fixes_in_outage: 0,
-        fixes_before_start: 0,
-        fixes_after_end: 0,
-        error_model: settings.error_model,
-        timing_rule: settings.timing,
-        timing: timing::TimingReport::default(),
-        pending: std::collections::VecDeque::new(),
-        smoother,
-        smoothed: None,
-        smoothed_traces: smooth::SmoothedTraces::default(),
-        fix_track: evaluation::Thinned::default(),
-        constraints: constraints::Constraints::new(settings.nhc, settings.zupt),
-        out: inputs.out.clone(),
-        output_interval: settings.output_interval,
-        states: None,
-    };
+    setup::check_odometer(inputs, &settings)?;
+    let readers = setup::Readers::open(inputs, &settings)?;
+    setup::prepare_output(inputs)?;
+    let layout = readers.layout;
+    let mut job = setup::job(inputs, &settings, readers, progress)?;
     let outcome = dispatch(&settings, layout, &mut job);
-    // Nothing compared is an error, never a row of zeros.
-    let end_time = job.sink.end_time;
-    let outcome = outcome.and_then(|()| match &mut job.sink.evaluation {
-        Some(e) if e.all.epochs() == 0 => Err(Error::Failed(format!(
-            "{}: {}",
-            inputs
-                .truth
-                .as_deref()
-                .unwrap_or(Path::new("truth"))
-                .display(),
-            e.why_nothing_compared(settings.start.time, end_time)
-        ))),
-        _ => Ok(()),
-    });
-    let mut state_traces = StateTraces::default();
-    let states = job.states.take().map(|mut s| {
-        state_traces.estimates = s.estimate_names.clone();
-        state_traces.sigmas = s.sigma_names.clone();
-        state_traces.forward = std::mem::take(&mut s.rows.records);
-        s.finish(outcome.is_ok())
-    });
-    job.sink.finish(outcome.is_ok())?;
-    outcome?;
-    let mut files = vec![nav_path, csv_path];
-    if let Some(s) = states {
-        files.extend(s?);
-    }
-    let (mut errors, mut aiding_errors, mut drift) = (None, None, Vec::new());
-    let mut consistency = None;
-    let mut traces = None;
-    if let Some(e) = job.sink.evaluation.take() {
-        errors = e.all.finish();
-        aiding_errors = e.aiding.finish();
-        consistency = Some(e.consistency);
-        drift = e.drift.clone().finish(job.sink.end_time);
-        files.push(inputs.out.join("errors.csv"));
-        files.extend(write_errors(&inputs.out, &e, &drift)?);
-        traces = Some(ErrorTraces {
-            every: e.errors.records,
-            every_sigma: e.sigmas.records,
-            aiding: e.updates.records,
-            smoothed: std::mem::take(&mut job.smoothed_traces.errors),
-            smoothed_sigma: std::mem::take(&mut job.smoothed_traces.sigmas),
-            nees: e.nees.records,
-            smoothed_nees: std::mem::take(&mut job.smoothed_traces.nees),
-        });
-    }
-    let report = ProcessReport {
-        filter: label,
-        samples: job.sink.samples,
-        end_time: job.sink.end_time,
-        fixes_used: job.fixes_used,
-        fixes_in_outage: job.fixes_in_outage,
-        fixes_refused_quality: job.gnss.as_ref().map_or(0, GnssSource::refused),
-        fixes_before_start: job.fixes_before_start,
-        fixes_after_end: job.fixes_after_end,
-        updates: job.sink.updates,
-        rejected: job.sink.rejected,
-        constraints: job.constraints.counts,
-        alignment,
-        errors,
-        aiding_errors,
-        consistency,
-        drift,
-        timing: job.timing.clone(),
-        axes: settings.axes,
-        files,
-        smoothed: job.smoothed.take(),
-    };
-    state_traces.smoothed = std::mem::take(&mut job.smoothed_traces.states);
-    // The track in metres from the initial position.
-    let local = |points: &[(f64, f64, f64)]| -> Vec<(f64, f64, f64)> {
-        points
-            .iter()
-            .map(|&(t, lat, lon)| {
-                let here = kestrel::nav::Geodetic::new(lat, lon, settings.start.pos.h);
-                let d = settings.earth.ned_offset(&settings.start.pos, &here);
-                (t, d.x, d.y)
-            })
-            .collect()
-    };
-    let track = Track {
-        forward: local(&job.sink.track.records),
-        smoothed: local(&job.smoothed_traces.track),
-        fixes: local(&job.fix_track.records),
-        outages: inputs.outages.iter().map(|o| (o.start, o.end)).collect(),
-    };
-    Ok(Processed {
-        report,
-        traces,
-        track,
-        states: state_traces,
-    })
-}
-
-/// The comparison of a solution with `truth`, writing `csv` in `--out`.
-fn compare_with(
-    inputs: &Inputs,
-    settings: &Settings,
-    truth: Truth,
-    csv: &str,
-) -> Result<Evaluation, Error> {
-    Evaluation::new(EvaluationSetup {
-        earth: settings.earth,
-        axes: settings.axes,
-        truth,
-        antenna: settings.truth.at_antenna.then_some(settings.lever_arm),
-        csv_path: inputs.out.join(csv),
-        drift: DriftTable::new(
-            &inputs.outages,
-            inputs
-                .gnss
-                .as_deref()
-                .and_then(|p| gnss_gap_threshold(p, settings)),
-            settings.start.time,
-        ),
-    })
-}
-
-/// 1.5 × the median interval of the first 21 intervals of the GNSS file:
-/// longer intervals between fixes are data gaps. `None` if the file has
-/// fewer than two fixes (an unreadable line is the main reader's to report).
-fn gnss_gap_threshold(path: &Path, settings: &Settings) -> Option<f64> {
-    let times: Vec<f64> = GnssInput::open(path, &settings.gnss_format, settings.week)
-        .ok()?
-        .take(22)
-        .map_while(Result::ok)
-        .map(|f| f.time)
-        .collect();
-    gap_threshold(&times)
-}
-
-/// The names written in `--out`: the run's own and the caller's `extra`.
-fn output_names(extra: &[String]) -> Vec<String> {
-    let states = ["result", "smoothed"]
-        .into_iter()
-        .flat_map(state_files::StateFiles::names);
-    [
-        "result.nav",
-        "result.csv",
-        "errors.csv",
-        "error_summary.csv",
-        "drift.csv",
-        "smoothed.nav",
-        "smoothed.csv",
-        "errors_smoothed.csv",
-        ".smoother-epochs.partial",
-        ".smoother-samples.partial",
-        ".smoother-corrections.partial",
-    ]
-    .map(String::from)
-    .into_iter()
-    .chain(states)
-    .chain(extra.iter().cloned())
-    .collect()
-}
-
-/// Refuses a run whose outputs would replace one of its inputs (say
-/// `--truth out/result.nav --out out`), comparing resolved paths, so a
-/// symbolic link in `--out` pointing at an input is caught too.
-fn refuse_overwriting_inputs(inputs: &Inputs, names: &[String]) -> Result<(), Error> {
-    let out = std::fs::canonicalize(&inputs.out).map_err(|e| Error::io(&inputs.out, e))?;
-    let odometer = match &inputs.odometer {
-        OdometerInput::File(p) => Some(p),
-        _ => None,
-    };
-    let given = [
-        ("--imu", Some(&inputs.imu)),
-        ("--gnss", inputs.gnss.as_ref()),
-        ("--truth", inputs.truth.as_ref()),
-        ("--odometer", odometer),
-        ("--config", Some(&inputs.config)),
-    ];
-    for (flag, input) in given {
-        let Some(input) = input else { continue };
-        let Ok(input_real) = std::fs::canonicalize(input) else {
-            continue;
-        };
-        for name in names {
-            let output = out.join(name);
-            let resolved = std::fs::canonicalize(&output).unwrap_or(output.clone());
-            if resolved == input_real || output == input_real {
-                return Err(Error::Failed(format!(
-                    "refusing to write {}: it is the {flag} input {}; choose another --out",
-                    inputs.out.join(name).display(),
-                    input.display()
-                )));
-            }
-        }
-    }
-    Ok(())
-}
-
-/// Removes symbolic links standing under output names in `out`, so no
-/// output is ever written through one (the link goes, its target is never
-/// touched; inputs were checked before).
-fn remove_output_links(out: &Path, names: &[String]) -> Result<(), Error> {
-    for name in names {
-        let p = out.join(name);
-        if std::fs::symlink_metadata(&p).is_ok_and(|m| m.file_type().is_symlink()) {
-            std::fs::remove_file(&p).map_err(|e| Error::io(&p, e))?;
-        }
-    }
-    Ok(())
-}
-
-/// The summary CSV and the drift table (the error CSV was streamed
-/// during the run).
-fn write_errors(dir: &Path, e: &Evaluation, drift: &[WindowDrift]) -> Result<Vec<PathBuf>, Error> {
-    let summary = dir.join("error_summary.csv");
-    write_summary_csv(
-        &summary,
-        &[("all", e.all.finish()), ("aiding", e.aiding.finish())],
-    )?;
-    let drift_path = dir.join("drift.csv");
-    write_drift_csv(&drift_path, drift)?;
-    Ok(vec![summary, drift_path])
-}
-
-/// `drift.csv`: one row per window; the statistics are empty for a window
-/// without compared epochs.
-fn write_drift_csv(path: &Path, drift: &[WindowDrift]) -> Result<(), Error> {
-    let mut text = String::from(
-        "kind,start_s,end_s,duration_s,epochs,rms_horizontal_m,max_horizontal_m,\
-         rms_vertical_m,max_vertical_m\n",
-    );
-    for w in drift {
-        let pair =
-            |p: Option<(f64, f64)>| p.map_or_else(|| ",".to_owned(), |(r, m)| format!("{r},{m}"));
-        text += &format!(
-            "{},{},{},{},{},{},{}\n",
-            w.kind.name(),
-            w.start,
-            w.end,
-            w.end - w.start,
-            w.epochs,
-            pair(w.horizontal),
-            pair(w.vertical)
-        );
-    }
-    write_atomically(path, &text)
-}
-
-/// Writes `text` to `path` through a partial file renamed into place.
-fn write_atomically(path: &Path, text: &str) -> Result<(), Error> {
-    let mut f = sink::create_partial(path)?;
-    std::io::Write::write_all(&mut f, text.as_bytes()).map_err(|e| Error::io(path, e))?;
-    sink::settle(path, true)
+    results::finish(inputs, &settings, job, outcome, alignment)
 }
 
 /// Names of the position axes.
@@ -659,40 +267,6 @@ fn axis_names(axes: PositionAxes) -> [&'static str; 3] {
         PositionAxes::NorthEastDown => ["north", "east", "down"],
         PositionAxes::EastNorthUp => ["east", "north", "up"],
     }
-}
-
-/// `error_summary.csv`: RMS and max |error| per quantity and axis, over
-/// every compared epoch (`all`) and over the aiding epochs (`aiding`);
-/// a set without epochs has no rows.
-fn write_summary_csv(path: &Path, sets: &[(&str, Option<ErrorStats>)]) -> Result<(), Error> {
-    let mut text = String::from("epochs,count,quantity,axis,unit,rms,max_abs\n");
-    for (name, stats) in sets {
-        let Some(s) = stats else { continue };
-        let head = format!("{name},{}", s.epochs);
-        let p = axis_names(s.axes);
-        let deg = |v: f64| v.to_degrees();
-        for (i, axis) in p.iter().enumerate() {
-            text += &format!(
-                "{head},position,{axis},m,{},{}\n",
-                s.rms_position[i], s.max_position[i]
-            );
-        }
-        let Some(m) = &s.motion else { continue };
-        for (i, a) in ["north", "east", "down"].iter().enumerate() {
-            text += &format!(
-                "{head},velocity,{a},m/s,{},{}\n",
-                m.rms_velocity[i], m.max_velocity[i]
-            );
-        }
-        for (i, a) in ["north", "east", "down"].iter().enumerate() {
-            text += &format!(
-                "{head},attitude,{a},deg,{},{}\n",
-                deg(m.rms_attitude[i]),
-                deg(m.max_attitude[i])
-            );
-        }
-    }
-    write_atomically(path, &text)
 }
 
 /// The text `kestrel process` prints.

@@ -4,6 +4,7 @@
 use std::collections::VecDeque;
 use std::fs::File;
 use std::io::BufReader;
+use std::path::{Path, PathBuf};
 
 use crate::experiment::Adaptation;
 use kestrel::adapter::PriorAdapter;
@@ -12,20 +13,28 @@ use kestrel::nav::engine::{ErrorSystem, LooselyCoupled};
 use kestrel::nav::measurement::{
     ErrorMeasurement, GnssFix, OdometerReading, ZeroAngularRate, ZeroVelocity,
 };
+use kestrel::nav::ImuIncrement;
 use kestrel::FilterError;
 
+use super::constraints::Constraints;
 use super::divergence::{describe, Step};
+use super::evaluation::Thinned;
 use super::outage::Outage;
 use super::schedule::Schedule;
 use super::sink::Sink;
+use super::smooth::{ForwardRecord, SmoothedReport, SmoothedTraces};
+use super::state_files::StateFiles;
 use super::timing::{ImuTiming, TimingReport, TimingRule, NOMINAL_SAMPLES};
-use crate::config::process::GnssFormat;
+use super::{Inputs, OdometerInput};
+use crate::config::process::{GnssFormat, Settings};
+use crate::scenario::ErrorModelKind;
 use crate::{Error, InputError};
 use kestrel_io::gins::{
     GnssReader, ImuReader, ImuRecord, OdometerReader, RtklibReader, SpeedRecord,
 };
 
-/// The inputs of a run and its outputs.
+/// The inputs of a run and its outputs: what the forward pass reads,
+/// writes and counts.
 pub(crate) struct Job<'p> {
     pub imu: ImuReader<BufReader<File>>,
     pub gnss: Option<GnssSource>,
@@ -36,35 +45,45 @@ pub(crate) struct Job<'p> {
     pub outages: Vec<Outage>,
     pub start: f64,
     pub sink: Sink<'p>,
-    /// GNSS fixes used, skipped in outages, before the initial time and
-    /// after the last IMU sample (read and checked, not used).
-    pub fixes_used: usize,
-    pub fixes_in_outage: usize,
-    pub fixes_before_start: usize,
-    pub fixes_after_end: usize,
+    /// What became of the GNSS fixes read.
+    pub fixes: FixCounts,
     /// The error-state model (to name state components in errors).
-    pub error_model: crate::scenario::ErrorModelKind,
+    pub error_model: ErrorModelKind,
     /// The treatment of IMU gaps, and what was seen.
     pub timing_rule: TimingRule,
     pub timing: TimingReport,
     /// IMU records read ahead (to estimate the nominal interval).
     pub pending: VecDeque<ImuRecord>,
     /// The record for `--smooth`.
-    pub smoother: Option<super::smooth::ForwardRecord>,
+    pub smoother: Option<ForwardRecord>,
     /// What the smoother did.
-    pub smoothed: Option<super::smooth::SmoothedReport>,
+    pub smoothed: Option<SmoothedReport>,
     /// The output folder and interval (for the state files).
-    pub out: std::path::PathBuf,
+    pub out: PathBuf,
     pub output_interval: f64,
     /// The forward run's IMU error estimates and σ (created with the
     /// engine's layout).
-    pub states: Option<super::state_files::StateFiles>,
+    pub states: Option<StateFiles>,
     /// The fixes used: (time, latitude, longitude), thinned.
-    pub fix_track: super::evaluation::Thinned<(f64, f64, f64)>,
+    pub fix_track: Thinned<(f64, f64, f64)>,
     /// Standstill and non-holonomic pseudo-measurements.
-    pub constraints: super::constraints::Constraints,
+    pub constraints: Constraints,
     /// The smoothed solution's errors, thinned (with a truth).
-    pub smoothed_traces: super::smooth::SmoothedTraces,
+    pub smoothed_traces: SmoothedTraces,
+}
+
+/// The GNSS fixes of a run: used, skipped in outages, before the initial
+/// time and after the last IMU sample (read and checked, not used).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct FixCounts {
+    /// Used in an update.
+    pub used: usize,
+    /// Skipped in an outage window.
+    pub in_outage: usize,
+    /// At or before the initial time.
+    pub before_start: usize,
+    /// After the last IMU sample.
+    pub after_end: usize,
 }
 
 /// A reading of the odometer file is used for this long after its time, s:
@@ -225,7 +244,49 @@ impl GnssSource {
     }
 }
 
-impl Job<'_> {
+impl<'p> Job<'p> {
+    /// The job of reading `imu` and `gnss` (and the odometer speeds
+    /// `inputs` names, whose file is opened here) into `sink` and the
+    /// smoother's record, as `settings` say.
+    pub(crate) fn new(
+        imu: ImuReader<BufReader<File>>,
+        gnss: Option<GnssSource>,
+        sink: Sink<'p>,
+        smoother: Option<ForwardRecord>,
+        settings: &Settings,
+        inputs: &Inputs,
+    ) -> Result<Self, Error> {
+        let odometer_file = match &inputs.odometer {
+            OdometerInput::File(p) => Some(OdometerFile::new(OdometerReader::open(p)?)),
+            _ => None,
+        };
+        Ok(Self {
+            imu,
+            gnss,
+            odometer_rate: match inputs.odometer {
+                OdometerInput::None => None,
+                _ => settings.odometer.map(|o| o.rate),
+            },
+            odometer_file,
+            outages: inputs.outages.clone(),
+            start: settings.start.time,
+            sink,
+            fixes: FixCounts::default(),
+            error_model: settings.error_model,
+            timing_rule: settings.timing,
+            timing: TimingReport::default(),
+            pending: VecDeque::new(),
+            smoother,
+            smoothed: None,
+            out: inputs.out.clone(),
+            output_interval: settings.output_interval,
+            states: None,
+            fix_track: Thinned::default(),
+            constraints: Constraints::new(settings.nhc, settings.zupt),
+            smoothed_traces: SmoothedTraces::default(),
+        })
+    }
+
     /// The first IMU record after the start time.
     fn first_imu(&mut self) -> Result<ImuRecord, Error> {
         for r in self.imu.by_ref() {
@@ -287,14 +348,14 @@ impl Job<'_> {
                 return Ok(None);
             };
             if fix.time <= self.start {
-                self.fixes_before_start += 1;
+                self.fixes.before_start += 1;
                 continue;
             }
             if self.outages.iter().any(|o| o.contains(fix.time)) {
-                self.fixes_in_outage += 1;
+                self.fixes.in_outage += 1;
                 continue;
             }
-            self.fixes_used += 1;
+            self.fixes.used += 1;
             if let Some(e) = self.sink.evaluation.as_mut() {
                 e.drift.fix(fix.time);
             }
@@ -304,6 +365,24 @@ impl Job<'_> {
             self.fix_track.push((fix.time, fix.pos.lat, fix.pos.lon));
             return Ok(Some((fix, line)));
         }
+    }
+
+    /// With `--odo`, the first sample after the start must have the IMU
+    /// file's odometer column (a file without it is refused at once, not
+    /// run without an odometer).
+    fn check_odometer_column(&self, first: Option<&ImuRecord>) -> Result<(), Error> {
+        if let (Some(_), Some(r), None) = (self.odometer_rate, first, &self.odometer_file)
+            && r.odometer.is_none()
+        {
+            return Err(InputError::at(
+                self.imu.path(),
+                r.line,
+                8,
+                "expected an 8th column (odometer speed, m/s): --odo is given",
+            )
+            .into());
+        }
+        Ok(())
     }
 
     /// An odometer file none of whose readings the run reached is an error
@@ -326,113 +405,102 @@ impl Job<'_> {
     fn drain_gnss(&mut self) -> Result<(), InputError> {
         if let Some(gnss) = self.gnss.as_mut() {
             while gnss.take()?.is_some() {
-                self.fixes_after_end += 1;
+                self.fixes.after_end += 1;
             }
         }
         Ok(())
     }
 }
 
-/// Runs `engine` over the job's data; `gnss` and `odometer` update it.
-pub(crate) fn drive<const N: usize, S, F, A>(
+/// What a filter does with the aiding read from the files: the GNSS
+/// update and the odometer update of the engine `E`.
+pub(crate) trait FileAiding<E> {
+    /// Updates `engine` with the GNSS fix `fix`.
+    fn gnss(&mut self, engine: &mut E, fix: &GnssFix) -> Result<Adaptation, FilterError>;
+
+    /// Updates `engine` with the odometer reading `reading`.
+    fn odometer(
+        &mut self,
+        engine: &mut E,
+        reading: &OdometerReading,
+    ) -> Result<Adaptation, FilterError>;
+}
+
+/// Runs `engine` over the job's data; `aiding` updates it.
+pub(crate) fn drive<const N: usize, S, F, A, G>(
     job: &mut Job<'_>,
     engine: &mut LooselyCoupled<f64, N, S, F, A>,
-    mut gnss: impl FnMut(
-        &mut LooselyCoupled<f64, N, S, F, A>,
-        &GnssFix,
-    ) -> Result<Adaptation, FilterError>,
-    mut odometer: impl FnMut(
-        &mut LooselyCoupled<f64, N, S, F, A>,
-        &OdometerReading,
-    ) -> Result<Adaptation, FilterError>,
+    aiding: G,
 ) -> Result<(), Error>
 where
     S: ErrorSystem<N>,
     F: Form<f64, N> + PredictForm<f64, N, S::Process> + Constrainable<N>,
     A: PriorAdapter<f64>,
+    G: FileAiding<LooselyCoupled<f64, N, S, F, A>>,
 {
-    let label = job.sink.label;
-    job.states = Some(super::state_files::StateFiles::create::<N, S>(
+    job.states = Some(StateFiles::create::<N, S>(
         &job.out,
         "result",
         job.output_interval,
     )?);
-    let mut schedule = Schedule::new();
-    let mut previous = (job.start, None);
-    let mut timing = job.start_timing()?;
-    let mut current = job.next_imu()?;
-    if let (Some(_), Some(r), None) = (job.odometer_rate, &current, &job.odometer_file)
-        && r.odometer.is_none()
-    {
-        return Err(InputError::at(
-            job.imu.path(),
-            r.line,
-            8,
-            "expected an 8th column (odometer speed, m/s): --odo is given",
-        )
-        .into());
-    }
+    let timing = job.start_timing()?;
+    let first = job.next_imu()?;
+    job.check_odometer_column(first.as_ref())?;
     let imu_path = job.imu.path().to_path_buf();
-    let outcome = loop {
-        let Some(sample) = current else {
-            break job
-                .drain_gnss()
-                .map_err(Error::from)
-                .and_then(|()| job.check_odometer_file());
-        };
-        match step(
-            job,
-            engine,
-            &mut timing,
-            &mut schedule,
-            &sample,
-            previous,
-            (label, &imu_path),
-            &mut gnss,
-            &mut odometer,
-        ) {
-            Ok(following) => {
-                previous = (sample.time, Some(sample.line));
-                current = following;
-            }
-            Err(e) => break Err(e),
-        }
+    let mut pass = Pass {
+        label: job.sink.label,
+        imu_path: &imu_path,
+        job,
+        engine,
+        aiding,
+        timing,
+        schedule: Schedule::new(),
     };
-    job.timing = timing.report();
+    let outcome = pass.run(first);
+    pass.job.timing = pass.timing.report();
     outcome
 }
 
-/// One IMU sample and the aiding due at it; returns the next sample.
-#[allow(clippy::too_many_arguments)]
-fn step<const N: usize, S, F, A>(
-    job: &mut Job<'_>,
-    engine: &mut LooselyCoupled<f64, N, S, F, A>,
-    timing: &mut ImuTiming,
-    schedule: &mut Schedule,
-    sample: &ImuRecord,
-    previous: (f64, Option<usize>),
-    (label, imu_path): (&str, &std::path::Path),
-    gnss: &mut impl FnMut(
-        &mut LooselyCoupled<f64, N, S, F, A>,
-        &GnssFix,
-    ) -> Result<Adaptation, FilterError>,
-    odometer: &mut impl FnMut(
-        &mut LooselyCoupled<f64, N, S, F, A>,
-        &OdometerReading,
-    ) -> Result<Adaptation, FilterError>,
-) -> Result<Option<ImuRecord>, Error>
-where
-    S: ErrorSystem<N>,
-    F: Form<f64, N> + PredictForm<f64, N, S::Process> + Constrainable<N>,
-    A: PriorAdapter<f64>,
-{
-    let following = job.next_imu()?;
-    let t = sample.time;
-    let model = job.error_model;
-    // Messages are formatted only on failure: nothing here allocates per
-    // sample.
-    let imu_line = || format!("{}:{}", imu_path.display(), sample.line);
-    let diverged = |error: FilterError, step: Step, input: String| {
+/// One forward pass: the job, the engine and its aiding, and what the
+/// pass carries from one IMU sample to the next.
+struct Pass<'a, 'p, const N: usize, S, F, A, G> {
+    job: &'a mut Job<'p>,
+    engine: &'a mut LooselyCoupled<f64, N, S, F, A>,
+    aiding: G,
+    /// The filter's label and the IMU file, for messages.
+    label: &'static str,
+    imu_path: &'a Path,
+    /// The IMU time line (intervals, gaps).
+    timing: ImuTiming,
+    /// The odometer updates' schedule.
+    schedule: Schedule,
+}
+
+/// Where the pass is, to name a failure: the sample's time and IMU line.
+/// Messages are formatted only on failure: nothing here allocates per
+/// sample.
+#[derive(Clone, Copy)]
+struct At<'a> {
+    label: &'static str,
+    model: ErrorModelKind,
+    imu_path: &'a Path,
+    time: f64,
+    line: usize,
+}
+
+impl At<'_> {
+    /// The IMU line of the sample, `FILE:LINE`.
+    fn imu_line(&self) -> String {
+        format!("{}:{}", self.imu_path.display(), self.line)
+    }
+
+    /// The input of a step the IMU line drives (propagation, constraints).
+    fn imu_input(&self) -> String {
+        format!("IMU line {}", self.imu_line())
+    }
+
+    /// The filter's `error` in `step` on `input`, in the user's terms.
+    fn diverged(&self, error: FilterError, step: Step, input: String) -> Error {
         let doing = match step {
             Step::Imu => "propagating",
             Step::Gnss(_) => "in the GNSS update",
@@ -442,116 +510,219 @@ where
             Step::NonHolonomic => "in a non-holonomic update",
         };
         Error::Failed(format!(
-            "{label} diverged at {t} s of week {doing} ({input}): {}",
-            describe(&error, model, step)
+            "{} diverged at {} s of week {doing} ({input}): {}",
+            self.label,
+            self.time,
+            describe(&error, self.model, step)
         ))
-    };
-    let increment = timing.increment(sample, previous.0, previous.1)?;
-    engine
-        .imu(&increment)
-        .map_err(|e| diverged(e, Step::Imu, format!("IMU line {}", imu_line())))?;
-    record_epoch(job, engine)?;
-    // The IMU says "no vibration, no manoeuvre"; the INS speed rules out a
-    // smooth drive at constant velocity, which the IMU cannot tell apart.
-    let standing = match job.constraints.zupt.as_mut() {
-        Some((detector, z, _)) => {
-            detector.push(&increment) && engine.solution().vel.norm() < z.max_speed
+    }
+}
+
+impl<const N: usize, S, F, A, G> Pass<'_, '_, N, S, F, A, G>
+where
+    S: ErrorSystem<N>,
+    F: Form<f64, N> + PredictForm<f64, N, S::Process> + Constrainable<N>,
+    A: PriorAdapter<f64>,
+    G: FileAiding<LooselyCoupled<f64, N, S, F, A>>,
+{
+    /// The samples from `first` to the end of the IMU file, then the
+    /// checks of the other files' ends.
+    fn run(&mut self, first: Option<ImuRecord>) -> Result<(), Error> {
+        let mut previous = (self.job.start, None);
+        let mut current = first;
+        while let Some(sample) = current {
+            current = self.step(&sample, previous)?;
+            previous = (sample.time, Some(sample.line));
         }
-        None => false,
-    };
-    job.constraints.counts.standstill_samples += usize::from(standing);
-    if let Some((_, z, schedule)) = job.constraints.zupt.as_mut()
-        && standing
-        && schedule.due(t, z.rate)
-    {
+        self.job.drain_gnss()?;
+        self.job.check_odometer_file()
+    }
+
+    /// One IMU sample and the aiding due at it; returns the next sample.
+    fn step(
+        &mut self,
+        sample: &ImuRecord,
+        previous: (f64, Option<usize>),
+    ) -> Result<Option<ImuRecord>, Error> {
+        let following = self.job.next_imu()?;
+        let at = At {
+            label: self.label,
+            model: self.job.error_model,
+            imu_path: self.imu_path,
+            time: sample.time,
+            line: sample.line,
+        };
+        let increment = self.timing.increment(sample, previous.0, previous.1)?;
+        self.engine
+            .imu(&increment)
+            .map_err(|e| at.diverged(e, Step::Imu, at.imu_input()))?;
+        self.record_epoch()?;
+        let standing = self.standing(&increment);
+        self.zero_velocity(at, standing)?;
+        self.non_holonomic(at, standing)?;
+        let gnss = self.gnss(at, following.as_ref().map(|f| f.time))?;
+        // An odometer update at the same sample is the one reported.
+        let update = self.odometer(at, sample)?.or(gnss);
+        self.output(at, update)?;
+        Ok(following)
+    }
+
+    /// Whether the vehicle stands still at this sample (counted). The IMU
+    /// says "no vibration, no manoeuvre"; the INS speed rules out a smooth
+    /// drive at constant velocity, which the IMU cannot tell apart.
+    fn standing(&mut self, increment: &ImuIncrement) -> bool {
+        let standing = match self.job.constraints.zupt.as_mut() {
+            Some((detector, z, _)) => {
+                detector.push(increment) && self.engine.solution().vel.norm() < z.max_speed
+            }
+            None => false,
+        };
+        self.job.constraints.counts.standstill_samples += usize::from(standing);
+        standing
+    }
+
+    /// The zero-velocity (and zero-angular-rate) updates, when standing
+    /// and due.
+    fn zero_velocity(&mut self, at: At<'_>, standing: bool) -> Result<(), Error> {
+        let Some((_, z, schedule)) = self.job.constraints.zupt.as_mut() else {
+            return Ok(());
+        };
+        if !(standing && schedule.due(at.time, z.rate)) {
+            return Ok(());
+        }
         let (v_std, w_std) = (z.velocity_std, z.angular_rate_std);
-        let ins = engine.ins_context(t);
-        let m = ZeroVelocity::new(v_std).measurement(engine.system(), &ins);
-        engine
+        let ins = self.engine.ins_context(at.time);
+        let m = ZeroVelocity::new(v_std).measurement(self.engine.system(), &ins);
+        self.engine
             .apply_with(&m, &mut ())
-            .map_err(|e| diverged(e, Step::ZeroVelocity, format!("IMU line {}", imu_line())))?;
-        record_epoch(job, engine)?;
-        job.constraints.counts.zero_velocity += 1;
+            .map_err(|e| at.diverged(e, Step::ZeroVelocity, at.imu_input()))?;
+        self.record_epoch()?;
+        self.job.constraints.counts.zero_velocity += 1;
         if w_std > 0.0 {
-            let ins = engine.ins_context(t);
-            let m = ZeroAngularRate::new(w_std).measurement(engine.system(), &ins);
-            engine.apply_with(&m, &mut ()).map_err(|e| {
-                diverged(e, Step::ZeroAngularRate, format!("IMU line {}", imu_line()))
-            })?;
-            record_epoch(job, engine)?;
-            job.constraints.counts.zero_angular_rate += 1;
-        }
-    }
-    if let Some((model, rate, schedule)) = job.constraints.nhc.as_mut() {
-        // At standstill the zero-velocity update says more.
-        if schedule.due(t, *rate) && !standing {
-            let ins = engine.ins_context(t);
-            let m = model.nhc(engine.system(), &ins);
-            engine
+            let ins = self.engine.ins_context(at.time);
+            let m = ZeroAngularRate::new(w_std).measurement(self.engine.system(), &ins);
+            self.engine
                 .apply_with(&m, &mut ())
-                .map_err(|e| diverged(e, Step::NonHolonomic, format!("IMU line {}", imu_line())))?;
-            record_epoch(job, engine)?;
-            job.constraints.counts.non_holonomic += 1;
+                .map_err(|e| at.diverged(e, Step::ZeroAngularRate, at.imu_input()))?;
+            self.record_epoch()?;
+            self.job.constraints.counts.zero_angular_rate += 1;
+        }
+        Ok(())
+    }
+
+    /// The non-holonomic update, when due and not standing (at standstill
+    /// the zero-velocity update says more).
+    fn non_holonomic(&mut self, at: At<'_>, standing: bool) -> Result<(), Error> {
+        let Some((model, rate, schedule)) = self.job.constraints.nhc.as_mut() else {
+            return Ok(());
+        };
+        if !schedule.due(at.time, *rate) || standing {
+            return Ok(());
+        }
+        let ins = self.engine.ins_context(at.time);
+        let m = model.nhc(self.engine.system(), &ins);
+        self.engine
+            .apply_with(&m, &mut ())
+            .map_err(|e| at.diverged(e, Step::NonHolonomic, at.imu_input()))?;
+        self.record_epoch()?;
+        self.job.constraints.counts.non_holonomic += 1;
+        Ok(())
+    }
+
+    /// The GNSS updates due at this sample (the next one at `next`); what
+    /// the last of them did.
+    fn gnss(&mut self, at: At<'_>, next: Option<f64>) -> Result<Option<Adaptation>, Error> {
+        let mut update = None;
+        while let Some((fix, line)) = self.job.gnss_due(at.time, next)? {
+            let rows = if fix.vel.is_some() { 6 } else { 3 };
+            let adaptation = self.aiding.gnss(self.engine, &fix).map_err(|e| {
+                let input = match self.job.gnss.as_ref() {
+                    Some(g) => format!("GNSS line {}:{line}", g.path().display()),
+                    None => format!("GNSS line {line}"),
+                };
+                at.diverged(e, Step::Gnss(rows), input)
+            })?;
+            update = Some(adaptation);
+            self.record_epoch()?;
+        }
+        Ok(update)
+    }
+
+    /// The odometer update, when a speed is known and the update due; what
+    /// it did.
+    fn odometer(&mut self, at: At<'_>, sample: &ImuRecord) -> Result<Option<Adaptation>, Error> {
+        // The speed, and its line in the odometer file (`None`: the IMU file).
+        let speed = match self.job.odometer_file.as_mut() {
+            Some(f) => f
+                .speed_at(at.time)?
+                .map(|(speed, line)| (speed, Some(line))),
+            None => sample.odometer.map(|speed| (speed, None)),
+        };
+        let (Some(rate), Some((speed, line))) = (self.job.odometer_rate, speed) else {
+            return Ok(None);
+        };
+        if !self.schedule.due(at.time, rate) {
+            return Ok(None);
+        }
+        let reading = OdometerReading::new(at.time, speed);
+        let adaptation = self.aiding.odometer(self.engine, &reading).map_err(|e| {
+            let input = match (line, self.job.odometer_file.as_ref()) {
+                (Some(l), Some(f)) => format!("odometer line {}:{l}", f.path().display()),
+                _ => format!("odometer speed of IMU line {}", at.imu_line()),
+            };
+            at.diverged(e, Step::Odometer, input)
+        })?;
+        self.record_epoch()?;
+        Ok(Some(adaptation))
+    }
+
+    /// The sample's solution to the outputs: the result files and the
+    /// comparison, the smoother's record, the state files.
+    fn output(&mut self, at: At<'_>, update: Option<Adaptation>) -> Result<(), Error> {
+        // The navigation block of the error covariance, for the NEES and
+        // the σ envelopes (only with a truth: a copy of P per sample
+        // otherwise wasted).
+        let covariance = self.job.sink.evaluation.is_some().then(|| {
+            self.engine
+                .covariance()
+                .fixed_view::<9, 9>(0, 0)
+                .into_owned()
+        });
+        self.job
+            .sink
+            .sample(self.engine.solution(), update, covariance.as_ref())
+            .map_err(|e| match e {
+                Error::Failed(m) => Error::Failed(format!(
+                    "{} diverged at {} s of week after IMU line {}: {m}",
+                    at.label,
+                    at.time,
+                    at.imu_line()
+                )),
+                other => other,
+            })?;
+        if let Some(r) = self.job.smoother.as_mut() {
+            r.sample(self.engine.solution(), self.engine.corrections())?;
+        }
+        // A covariance epoch (propagated or updated at this sample): the
+        // filter's estimates and σ, at the output interval.
+        if let Some(states) = self.job.states.as_mut()
+            && self.engine.pending_interval() == 0.0
+            && states.due(at.time)
+        {
+            let sigma = self.engine.std_devs();
+            states.row(at.time, self.engine.corrections(), sigma.iter().copied())?;
+        }
+        Ok(())
+    }
+
+    /// Streams the covariance epoch the engine closed, if any, to the
+    /// smoother's record.
+    fn record_epoch(&mut self) -> Result<(), Error> {
+        match (self.job.smoother.as_mut(), self.engine.take_epoch()) {
+            (Some(r), Some(e)) => r.epoch(&e),
+            _ => Ok(()),
         }
     }
-    let mut update = None;
-    while let Some((fix, line)) = job.gnss_due(t, following.as_ref().map(|f| f.time))? {
-        let rows = if fix.vel.is_some() { 6 } else { 3 };
-        let gnss_path = job.gnss.as_ref().map(GnssSource::path);
-        let input = || match gnss_path {
-            Some(p) => format!("GNSS line {}:{line}", p.display()),
-            None => format!("GNSS line {line}"),
-        };
-        update = Some(gnss(engine, &fix).map_err(|e| diverged(e, Step::Gnss(rows), input()))?);
-        record_epoch(job, engine)?;
-    }
-    // The speed, and its line in the odometer file (`None`: the IMU file).
-    let speed = match job.odometer_file.as_mut() {
-        Some(f) => f.speed_at(t)?.map(|(speed, line)| (speed, Some(line))),
-        None => sample.odometer.map(|speed| (speed, None)),
-    };
-    if let (Some(rate), Some((speed, line))) = (job.odometer_rate, speed)
-        && schedule.due(t, rate)
-    {
-        let reading = OdometerReading::new(t, speed);
-        let input = || match (line, job.odometer_file.as_ref()) {
-            (Some(l), Some(f)) => format!("odometer line {}:{l}", f.path().display()),
-            _ => format!("odometer speed of IMU line {}", imu_line()),
-        };
-        update =
-            Some(odometer(engine, &reading).map_err(|e| diverged(e, Step::Odometer, input()))?);
-        record_epoch(job, engine)?;
-    }
-    // The navigation block of the error covariance, for the NEES and the
-    // σ envelopes (only with a truth: a copy of P per sample otherwise
-    // wasted).
-    let covariance = job
-        .sink
-        .evaluation
-        .is_some()
-        .then(|| engine.covariance().fixed_view::<9, 9>(0, 0).into_owned());
-    job.sink
-        .sample(engine.solution(), update, covariance.as_ref())
-        .map_err(|e| match e {
-            Error::Failed(m) => Error::Failed(format!(
-                "{label} diverged at {t} s of week after IMU line {}: {m}",
-                imu_line()
-            )),
-            other => other,
-        })?;
-    if let Some(r) = job.smoother.as_mut() {
-        r.sample(engine.solution(), engine.corrections())?;
-    }
-    // A covariance epoch (propagated or updated at this sample): the
-    // filter's estimates and σ, at the output interval.
-    if let Some(states) = job.states.as_mut()
-        && engine.pending_interval() == 0.0
-        && states.due(t)
-    {
-        let sigma = engine.std_devs();
-        states.row(t, engine.corrections(), sigma.iter().copied())?;
-    }
-    Ok(following)
 }
 
 /// The update forms the pseudo-measurements need: 3 rows (zero velocity,
@@ -566,21 +737,4 @@ impl<const N: usize, F> Constrainable<N> for F where
     F: UpdateForm<f64, N, ErrorMeasurement<f64, N, 3>, 3>
         + UpdateForm<f64, N, ErrorMeasurement<f64, N, 2>, 2>
 {
-}
-
-/// Streams the covariance epoch the engine closed, if any, to the
-/// smoother's record.
-fn record_epoch<const N: usize, S, F, A>(
-    job: &mut Job<'_>,
-    engine: &mut LooselyCoupled<f64, N, S, F, A>,
-) -> Result<(), Error>
-where
-    S: ErrorSystem<N>,
-    F: Form<f64, N> + PredictForm<f64, N, S::Process>,
-    A: PriorAdapter<f64>,
-{
-    match (job.smoother.as_mut(), engine.take_epoch()) {
-        (Some(r), Some(e)) => r.epoch(&e),
-        _ => Ok(()),
-    }
 }

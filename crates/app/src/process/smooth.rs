@@ -366,13 +366,16 @@ impl ForwardRecord {
     fn output<const N: usize, L: ErrorLayout<N>>(
         mut self,
     ) -> Result<(SmoothedReport, SmoothedTraces), Error> {
-        let mut corrections = Corrections::<N>::new(
+        let corrections = Corrections::<N>::new(
             self.corrections.reader()?,
             &self.corrections.path,
             self.count,
         );
-        let mut samples = self.samples.reader()?;
-        let samples_path = partial_path(&self.samples.path);
+        let samples = Samples {
+            reader: self.samples.reader()?,
+            path: partial_path(&self.samples.path),
+            bytes: [0u8; SAMPLE_LEN * 8],
+        };
         let mut silent = Silent;
         let setup = &mut self.setup;
         let mut sink = Sink::new(SinkSetup {
@@ -385,71 +388,14 @@ impl ForwardRecord {
             progress: progress::Ticker::new(&mut silent, 0.0, 0.0),
         })?;
         let mut states = StateFiles::create::<N, L>(&setup.out, "smoothed", setup.interval)?;
-        let earth = setup.earth;
-        let outcome = (|| -> Result<(), Error> {
-            let mut fixes = self.fixes.iter().copied().peekable();
-            let mut current = corrections.next()?;
-            let mut following = corrections.next()?;
-            let mut bytes = [0u8; SAMPLE_LEN * 8];
-            let mut pending: Option<(NavState, NavCovariance)> = None;
-            loop {
-                let read = match samples.read_exact(&mut bytes) {
-                    Ok(()) => Some(decode_sample(&bytes)),
-                    Err(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => None,
-                    Err(e) => return Err(Error::io(&samples_path, e)),
-                };
-                let nav = read.map(|(n, _)| n);
-                // Fixes belong to the sample before the next one's time.
-                if let Some((p, position)) = pending.take() {
-                    let next_time = nav.map_or(f64::INFINITY, |n| n.time);
-                    while let Some(t) = fixes.next_if(|&t| t < next_time) {
-                        if let Some(e) = sink.evaluation.as_mut() {
-                            e.drift.fix(t);
-                        }
-                    }
-                    sink.sample(&p, None, Some(&position))?;
-                }
-                let Some((nav, mut sensors)) = read else {
-                    break;
-                };
-                while following.as_ref().is_some_and(|f| f.time <= nav.time) {
-                    current = following;
-                    following = corrections.next()?;
-                }
-                let at_epoch = current.as_ref().is_some_and(|c| c.time == nav.time);
-                let (dx, variance, position) = match (&current, &following) {
-                    (Some(c), _) if c.time == nav.time => (c.after, c.variance, c.position),
-                    (Some(c), Some(f)) => {
-                        let w = (nav.time - c.time) / (f.time - c.time);
-                        (
-                            c.after + (f.before - c.after) * w,
-                            c.variance + (f.variance - c.variance) * w,
-                            c.position + (f.position - c.position) * w,
-                        )
-                    }
-                    (Some(c), None) => (c.after, c.variance, c.position),
-                    (None, _) => {
-                        return Err(Error::Failed(format!(
-                            "internal error: an IMU sample at {} s of week before the first \
-                             covariance epoch",
-                            nav.time
-                        )))
-                    }
-                };
-                let mut smoothed = nav;
-                // A zero correction (after the last update) leaves the
-                // forward solution bit for bit.
-                if dx.iter().any(|v| *v != 0.0) {
-                    feed_back::<f64, N, L>(&dx, &earth, &mut smoothed, &mut sensors);
-                }
-                if at_epoch && states.due(nav.time) {
-                    let sigma = variance.iter().map(|v| v.max(0.0).sqrt());
-                    states.row(nav.time, &sensors, sigma)?;
-                }
-                pending = Some((smoothed, position));
-            }
-            Ok(())
-        })();
+        let outcome = correct::<N, L>(
+            samples,
+            corrections,
+            &self.fixes,
+            setup.earth,
+            &mut sink,
+            &mut states,
+        );
         let finished = sink.finish(outcome.is_ok());
         let states_rows = std::mem::take(&mut states.rows.records);
         let state_files = states.finish(outcome.is_ok() && finished.is_ok());
@@ -457,30 +403,108 @@ impl ForwardRecord {
         finished?;
         let mut files = vec![setup.nav_path.clone(), setup.csv_path.clone()];
         files.extend(state_files?);
-        let (mut errors, mut drift) = (None, Vec::new());
-        let mut traces = SmoothedTraces {
-            track: std::mem::take(&mut sink.track.records),
-            states: states_rows,
-            ..SmoothedTraces::default()
-        };
-        let mut consistency = None;
-        if let Some(e) = sink.evaluation.take() {
-            errors = e.all.finish();
-            drift = e.drift.clone().finish(sink.end_time);
-            files.push(e.csv_path().to_path_buf());
-            consistency = Some(e.consistency);
-            traces.errors = e.errors.records;
-            traces.sigmas = e.sigmas.records;
-            traces.nees = e.nees.records;
+        Ok(smoothed_results(self.count, sink, states_rows, files))
+    }
+}
+
+/// Applies the smoothed corrections to the forward `samples` in time
+/// order: each smoothed sample to `sink` (with the GNSS `fixes` for its
+/// drift table), the estimates and σ at the covariance epochs to
+/// `states`.
+fn correct<const N: usize, L: ErrorLayout<N>>(
+    mut samples: Samples,
+    corrections: Corrections<N>,
+    fixes: &[f64],
+    earth: Ellipsoid,
+    sink: &mut Sink<'_>,
+    states: &mut StateFiles,
+) -> Result<(), Error> {
+    let mut fixes = fixes.iter().copied().peekable();
+    let mut bracket = Bracket::new(corrections)?;
+    let mut pending: Option<(NavState, NavCovariance)> = None;
+    loop {
+        let read = samples.next()?;
+        // Fixes belong to the sample before the next one's time.
+        if let Some((p, position)) = pending.take() {
+            let next_time = read.as_ref().map_or(f64::INFINITY, |(n, _)| n.time);
+            while let Some(t) = fixes.next_if(|&t| t < next_time) {
+                if let Some(e) = sink.evaluation.as_mut() {
+                    e.drift.fix(t);
+                }
+            }
+            sink.sample(&p, None, Some(&position))?;
         }
-        let report = SmoothedReport {
-            epochs: self.count,
-            errors,
-            drift,
-            consistency,
-            files,
+        let Some((nav, mut sensors)) = read else {
+            break;
         };
-        Ok((report, traces))
+        let c = bracket.at(nav.time)?;
+        let mut smoothed = nav;
+        // A zero correction (after the last update) leaves the forward
+        // solution bit for bit.
+        if c.dx.iter().any(|v| *v != 0.0) {
+            feed_back::<f64, N, L>(&c.dx, &earth, &mut smoothed, &mut sensors);
+        }
+        if c.at_epoch && states.due(nav.time) {
+            let sigma = c.variance.iter().map(|v| v.max(0.0).sqrt());
+            states.row(nav.time, &sensors, sigma)?;
+        }
+        pending = Some((smoothed, c.position));
+    }
+    Ok(())
+}
+
+/// The smoothed run's report and traces from its closed outputs: the
+/// `epochs` smoothed, the `sink` (with the comparison with the truth, if
+/// any), the estimate rows kept and the `files` written so far.
+fn smoothed_results(
+    epochs: usize,
+    mut sink: Sink<'_>,
+    states: Vec<StateRow>,
+    mut files: Vec<PathBuf>,
+) -> (SmoothedReport, SmoothedTraces) {
+    let (mut errors, mut drift) = (None, Vec::new());
+    let mut traces = SmoothedTraces {
+        track: std::mem::take(&mut sink.track.records),
+        states,
+        ..SmoothedTraces::default()
+    };
+    let mut consistency = None;
+    if let Some(e) = sink.evaluation.take() {
+        errors = e.all.finish();
+        drift = e.drift.clone().finish(sink.end_time);
+        files.push(e.csv_path().to_path_buf());
+        consistency = Some(e.consistency);
+        traces.errors = e.errors.records;
+        traces.sigmas = e.sigmas.records;
+        traces.nees = e.nees.records;
+    }
+    let report = SmoothedReport {
+        epochs,
+        errors,
+        drift,
+        consistency,
+        files,
+    };
+    (report, traces)
+}
+
+/// The forward run's samples file, read forwards.
+struct Samples {
+    reader: BufReader<File>,
+    path: PathBuf,
+    /// One record.
+    bytes: [u8; SAMPLE_LEN * 8],
+}
+
+impl Samples {
+    /// The next sample's solution and sensor corrections; `None` at the
+    /// end.
+    fn next(&mut self) -> Result<Option<(NavState, SensorCorrections)>, Error> {
+        match self.reader.read_exact(&mut self.bytes) {
+            Ok(()) => Ok(Some(decode_sample(&self.bytes))),
+            Err(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => Ok(None),
+            Err(e) => Err(Error::io(&self.path, e)),
+        }
     }
 }
 
@@ -573,5 +597,73 @@ impl<const N: usize> Corrections<N> {
             variance,
             position,
         }))
+    }
+}
+
+/// The smoothed correction at an IMU sample.
+struct Interpolated<const N: usize> {
+    /// Applied to the forward solution.
+    dx: SVector<f64, N>,
+    /// Smoothed variances.
+    variance: SVector<f64, N>,
+    /// Smoothed navigation-error covariance (see [`Correction`]).
+    position: NavCovariance,
+    /// Whether the sample is a covariance epoch.
+    at_epoch: bool,
+}
+
+/// The corrections around the sample being corrected: the epoch at or
+/// before it and the next one.
+struct Bracket<const N: usize> {
+    corrections: Corrections<N>,
+    current: Option<Correction<N>>,
+    following: Option<Correction<N>>,
+}
+
+impl<const N: usize> Bracket<N> {
+    /// At the first two epochs of `corrections`.
+    fn new(mut corrections: Corrections<N>) -> Result<Self, Error> {
+        let current = corrections.next()?;
+        let following = corrections.next()?;
+        Ok(Self {
+            corrections,
+            current,
+            following,
+        })
+    }
+
+    /// The correction at `t` (not before the previous call's): the
+    /// epoch's at an epoch, linear in time between two, the last one's
+    /// after the last.
+    fn at(&mut self, t: f64) -> Result<Interpolated<N>, Error> {
+        while self.following.as_ref().is_some_and(|f| f.time <= t) {
+            self.current = self.following;
+            self.following = self.corrections.next()?;
+        }
+        let at_epoch = self.current.as_ref().is_some_and(|c| c.time == t);
+        let (dx, variance, position) = match (&self.current, &self.following) {
+            (Some(c), _) if c.time == t => (c.after, c.variance, c.position),
+            (Some(c), Some(f)) => {
+                let w = (t - c.time) / (f.time - c.time);
+                (
+                    c.after + (f.before - c.after) * w,
+                    c.variance + (f.variance - c.variance) * w,
+                    c.position + (f.position - c.position) * w,
+                )
+            }
+            (Some(c), None) => (c.after, c.variance, c.position),
+            (None, _) => {
+                return Err(Error::Failed(format!(
+                    "internal error: an IMU sample at {t} s of week before the first \
+                     covariance epoch"
+                )))
+            }
+        };
+        Ok(Interpolated {
+            dx,
+            variance,
+            position,
+            at_epoch,
+        })
     }
 }
