@@ -18,6 +18,7 @@
 pub(crate) mod check;
 pub mod filter;
 pub(crate) mod locate;
+pub mod names;
 pub mod process;
 pub(crate) mod read;
 pub mod scenario;

@@ -7,12 +7,15 @@
 /// let o = RunOptions { axes: Some(PositionAxes::NorthEastDown), ..Default::default() };
 /// assert_eq!(o.axes, Some(PositionAxes::NorthEastDown));
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
 pub enum PositionAxes {
-    /// North, east, down (m).
+    /// North, east, down (m); `ned` in files.
+    #[default]
+    #[serde(rename = "ned")]
     NorthEastDown,
     /// East, north, up (m): paper 000's longitude, latitude and height
-    /// errors, and the E, N, U order of papers 002 and 004.
+    /// errors, and the E, N, U order of papers 002 and 004; `enu` in files.
+    #[serde(rename = "enu")]
     EastNorthUp,
 }
 

@@ -47,8 +47,10 @@ impl ErrorModelKind {
     }
 }
 
-/// What a scenario's filters measure.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// What a scenario's filters measure (in files by the names
+/// [`name`](Self::name) gives).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum MeasurementKind {
     /// GNSS position and velocity (m = 6).
     GnssPositionVelocity,
@@ -57,6 +59,22 @@ pub enum MeasurementKind {
     AttitudeVelocityPosition,
     /// Velocity matching with the odometer speed mapped to NED (m = 3).
     OdometerVelocity,
+}
+
+impl MeasurementKind {
+    /// The name files use.
+    ///
+    /// ```
+    /// use kestrel_app::scenario::MeasurementKind;
+    /// assert_eq!(MeasurementKind::OdometerVelocity.name(), "odometer-velocity");
+    /// ```
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::GnssPositionVelocity => "gnss-position-velocity",
+            Self::AttitudeVelocityPosition => "attitude-velocity-position",
+            Self::OdometerVelocity => "odometer-velocity",
+        }
+    }
 }
 
 /// The errors of the filter's initial navigation state (truth plus these

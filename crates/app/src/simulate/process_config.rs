@@ -5,8 +5,9 @@ use std::fmt::Write;
 use crate::experiment::PositionAxes;
 use crate::scenario::{ErrorModelKind, FilterKind, Scenario};
 use kestrel::nav::nalgebra::Vector3;
-use kestrel::nav::{Ellipsoid, NavState};
+use kestrel::nav::NavState;
 
+use crate::config::names::EarthName;
 use crate::config::units::{DEG_PER_H, DEG_PER_SQRT_H, M_S_PER_SQRT_H, UG};
 use kestrel_io::gins::{degrees_exact, invert_exact};
 
@@ -23,16 +24,6 @@ fn f(x: f64) -> String {
 
 fn v3(v: &Vector3<f64>, each: impl Fn(f64) -> f64) -> String {
     format!("[{}, {}, {}]", f(each(v.x)), f(each(v.y)), f(each(v.z)))
-}
-
-fn earth_name(e: &Ellipsoid) -> &'static str {
-    if *e == Ellipsoid::krasovsky() {
-        "krasovsky"
-    } else if *e == Ellipsoid::grs80() {
-        "grs80"
-    } else {
-        "wgs84"
-    }
 }
 
 /// The `[filter]` lines of `kind` (`None` if `process` does not run it).
@@ -79,7 +70,11 @@ pub fn process_config(scenario: &Scenario, start: &NavState, kind: &FilterKind) 
         w,
         "# Every key is explained in crates/app/configs/process-example.toml."
     );
-    let _ = writeln!(w, "earth = \"{}\"\n", earth_name(&sc.earth));
+    let _ = writeln!(
+        w,
+        "earth = \"{}\"\n",
+        EarthName::of(&sc.earth).unwrap_or_default().name()
+    );
 
     let e = start.euler();
     let _ = writeln!(w, "[initial]\nweek = 0\ntime = {}", f(start.time));

@@ -6,7 +6,7 @@ use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::Ellipsoid;
 
 use super::convert_trajectory::trajectory;
-use super::schema::{Earth, Header, InitialErrorsSection, ScenarioFile};
+use super::schema::{Header, InitialErrorsSection, ScenarioFile};
 use super::{convert_filter, convert_gnss, convert_sensors};
 use crate::config::check::{bad, join, num, quantity, Range, Res};
 use crate::config::units::{ANGLE, SI};
@@ -71,11 +71,7 @@ pub(super) fn scenario(f: ScenarioFile) -> Res<Scenario> {
 
 /// The named ellipsoid with any of its constants overridden.
 fn earth(h: &Header) -> Res<Ellipsoid> {
-    let mut e = match h.earth {
-        Earth::Wgs84 => Ellipsoid::wgs84(),
-        Earth::Grs80 => Ellipsoid::grs80(),
-        Earth::Krasovsky => Ellipsoid::krasovsky(),
-    };
+    let mut e = h.earth.ellipsoid();
     let p = "scenario";
     if let Some(a) = h.earth_a_m {
         e.a = num(&join(p, "earth_a_m"), a, Range::Positive)?;

@@ -1,12 +1,12 @@
 //! `[filter]` and `[[filters]]` to the scenario's filter set-up and kinds.
 
 use crate::scenario::{
-    ErrorModelKind, FilterKind, FilterSetup, InitialUncertainty, MeasurementKind, MeasurementNoise,
+    ErrorModelKind, FilterKind, FilterSetup, InitialUncertainty, MeasurementNoise,
 };
 use kestrel::nav::nalgebra::Vector3;
 
 use super::convert_sensors::imu_spec;
-use super::schema_filter::{ErrorModelName, FilterSection, MeasurementName, P0Section, RSection};
+use super::schema_filter::{ErrorModelName, FilterSection, P0Section, RSection};
 use crate::config::check::{bad, join, need, num, quantity, scalar_quantity, vec3, Range, Res};
 use crate::config::filter::{read_kind, Keys, Kinds};
 use crate::config::units::{ACCEL, ANGLE, GYRO_RATE, RATIO, SI};
@@ -16,14 +16,10 @@ pub(super) fn setup(f: &FilterSection) -> Res<FilterSetup> {
     let p = "filter";
     let tau_key = join(p, "odometer_scale_tau_s");
     let scale_key = join(p, "scale_tau_s");
-    let error_model = match f.error_model {
-        ErrorModelName::Ins15 => ErrorModelKind::Ins15,
-        ErrorModelName::Ins18 => ErrorModelKind::Ins18,
-        ErrorModelName::Ins21 => ErrorModelKind::Ins21 {
-            scale_tau: match f.scale_tau_s {
-                Some(t) => num(&scale_key, t, Range::Tau)?,
-                None => f64::INFINITY,
-            },
+    let tau = match f.error_model {
+        ErrorModelName::Ins21 => match f.scale_tau_s {
+            Some(t) => num(&scale_key, t, Range::Tau)?,
+            None => f64::INFINITY,
         },
         ErrorModelName::Odometer16 => {
             let tau = need(
@@ -31,11 +27,11 @@ pub(super) fn setup(f: &FilterSection) -> Res<FilterSetup> {
                 f.odometer_scale_tau_s,
                 "the `odometer16` model needs it",
             )?;
-            ErrorModelKind::Odometer16 {
-                scale_tau: num(&tau_key, tau, Range::Tau)?,
-            }
+            num(&tau_key, tau, Range::Tau)?
         }
+        ErrorModelName::Ins15 | ErrorModelName::Ins18 => f64::INFINITY,
     };
+    let error_model = f.error_model.model(tau);
     if !matches!(error_model, ErrorModelKind::Odometer16 { .. }) && f.odometer_scale_tau_s.is_some()
     {
         return Err(bad(tau_key, "applies only to error_model = \"odometer16\""));
@@ -62,11 +58,7 @@ pub(super) fn setup(f: &FilterSection) -> Res<FilterSetup> {
     };
     Ok(FilterSetup {
         error_model,
-        measurement: match f.measurement {
-            MeasurementName::GnssPositionVelocity => MeasurementKind::GnssPositionVelocity,
-            MeasurementName::AttitudeVelocityPosition => MeasurementKind::AttitudeVelocityPosition,
-            MeasurementName::OdometerVelocity => MeasurementKind::OdometerVelocity,
-        },
+        measurement: f.measurement,
         imu_model: imu_spec(&f.imu)?,
         p0,
         r: r(&f.r)?,

@@ -1,7 +1,8 @@
 //! The estimation tables of a written scenario file: `[filter]` and
 //! `[[filters]]`.
 
-use crate::scenario::{ErrorModelKind, FilterKind, MeasurementKind, Scenario};
+use crate::config::names::ErrorModelName;
+use crate::scenario::{ErrorModelKind, FilterKind, Scenario};
 use kestrel::sim::ImuErrors;
 
 use super::emit_sections::decimal_deg;
@@ -12,11 +13,10 @@ use crate::config::write::{number, Writer};
 pub(super) fn filter(w: &mut Writer, s: &Scenario) {
     let f = &s.filter;
     w.table("filter", false, "What every filter shares.");
-    let (model, tau) = match f.error_model {
-        ErrorModelKind::Ins15 => ("ins15", None),
-        ErrorModelKind::Ins18 => ("ins18", None),
-        ErrorModelKind::Odometer16 { scale_tau } => ("odometer16", Some(scale_tau)),
-        ErrorModelKind::Ins21 { .. } => ("ins21", None),
+    let model = ErrorModelName::of(&f.error_model).name();
+    let tau = match f.error_model {
+        ErrorModelKind::Odometer16 { scale_tau } => Some(scale_tau),
+        _ => None,
     };
     w.string(
         "error_model",
@@ -40,11 +40,7 @@ pub(super) fn filter(w: &mut Writer, s: &Scenario) {
             "IMU scale-factor correlation time, s (omit: random constants)",
         );
     }
-    let m = match f.measurement {
-        MeasurementKind::GnssPositionVelocity => "gnss-position-velocity",
-        MeasurementKind::AttitudeVelocityPosition => "attitude-velocity-position",
-        MeasurementKind::OdometerVelocity => "odometer-velocity",
-    };
+    let m = f.measurement.name();
     w.string(
         "measurement",
         m,

@@ -2,11 +2,11 @@
 
 use crate::scenario::Scenario;
 use kestrel::nav::nalgebra::Vector3;
-use kestrel::nav::Ellipsoid;
 use kestrel::sim::{ClimbRate, Segment, TurnRate, Vehicle};
 
 use super::emit_filters::{filter, filter_entry};
 use super::emit_sensors::{gnss, imu, odometer};
+use crate::config::names::EarthName;
 use crate::config::units::{ANGLE, DEG, SI};
 use crate::config::write::{number, Writer};
 
@@ -51,19 +51,11 @@ fn header(w: &mut Writer, s: &Scenario) {
         &s.seed.to_string(),
         "default random seed (--seed overrides)",
     );
-    let named = [
-        ("wgs84", Ellipsoid::wgs84()),
-        ("grs80", Ellipsoid::grs80()),
-        ("krasovsky", Ellipsoid::krasovsky()),
-    ];
-    let (name, base) = named
-        .iter()
-        .find(|(_, e)| *e == s.earth)
-        .copied()
-        .unwrap_or(named[0]);
+    let name = EarthName::of(&s.earth).unwrap_or_default();
+    let base = name.ellipsoid();
     w.string(
         "earth",
-        name,
+        name.name(),
         "ellipsoid: \"wgs84\", \"grs80\" or \"krasovsky\"",
     );
     // Another ellipsoid: its constants as overrides of WGS 84's.

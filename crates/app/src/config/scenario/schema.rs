@@ -6,6 +6,7 @@ use serde::Deserialize;
 use super::schema_filter::FilterSection;
 use super::schema_sensors::{AttitudeSection, GnssSection, ImuSection, OdometerSection};
 use crate::config::filter::Keys;
+use crate::config::names::EarthName;
 use crate::config::vec3::V3;
 
 /// The whole file.
@@ -34,21 +35,11 @@ pub(super) struct Header {
     #[serde(default)]
     pub seed: u64,
     #[serde(default)]
-    pub earth: Earth,
+    pub earth: EarthName,
     pub earth_a_m: Option<f64>,
     pub earth_flattening: Option<f64>,
     pub earth_omega_rad_s: Option<f64>,
     pub earth_gm_m3_s2: Option<f64>,
-}
-
-/// The Earth ellipsoids a file can name.
-#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-pub(super) enum Earth {
-    #[default]
-    Wgs84,
-    Grs80,
-    Krasovsky,
 }
 
 /// The vehicle kinds.

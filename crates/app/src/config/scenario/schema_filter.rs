@@ -3,27 +3,11 @@
 
 use serde::Deserialize;
 
+pub(super) use crate::config::names::ErrorModelName;
+use crate::scenario::MeasurementKind;
+
 use super::schema_sensors::ImuSection;
 use crate::config::vec3::V3;
-
-/// Error-state models.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-pub(super) enum ErrorModelName {
-    Ins15,
-    Ins18,
-    Ins21,
-    Odometer16,
-}
-
-/// Measurements.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "kebab-case")]
-pub(super) enum MeasurementName {
-    GnssPositionVelocity,
-    AttitudeVelocityPosition,
-    OdometerVelocity,
-}
 
 /// `[filter]`.
 #[derive(Debug, Deserialize)]
@@ -32,7 +16,7 @@ pub(super) struct FilterSection {
     pub error_model: ErrorModelName,
     pub odometer_scale_tau_s: Option<f64>,
     pub scale_tau_s: Option<f64>,
-    pub measurement: MeasurementName,
+    pub measurement: MeasurementKind,
     pub lever_arm_m: Option<V3>,
     pub odometer_mounting_deg: Option<[f64; 2]>,
     #[serde(default)]
