@@ -252,7 +252,6 @@ fn check_sum<T: Real, const D: usize, const N: usize>(
 }
 
 /// The unscented transform of the state through a measurement model.
-#[derive(Clone)]
 pub(crate) struct MeasuredSigma<T: Real, const N: usize, const M: usize> {
     pub z_hat: SVector<T, M>,
     pub center: SVector<T, M>,

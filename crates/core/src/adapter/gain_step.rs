@@ -9,15 +9,7 @@ use crate::linalg::{
 use crate::Real;
 
 /// The two parts of `H P⁻ Hᵀ`: `(H Φ P Φᵀ Hᵀ, H Q Hᵀ)`.
-pub(crate) type Parts<T, const M: usize> = (SMatrix<T, M, M>, SMatrix<T, M, M>);
-
-/// How a form factored the nominal `C`: its `L D Lᵀ` (borrowed) or its
-/// lower Cholesky factor.
-#[derive(Clone, Copy)]
-pub(crate) enum FormFactor<'a, T: Real, const M: usize> {
-    Ldl(&'a Ldl<T, M>),
-    Cholesky(&'a SMatrix<T, M, M>),
-}
+type Parts<T, const M: usize> = (SMatrix<T, M, M>, SMatrix<T, M, M>);
 
 /// Where the split of `H P⁻ Hᵀ` comes from.
 #[derive(Clone)]
@@ -34,22 +26,11 @@ enum Split<'a, T: Real, const M: usize> {
     },
 }
 
-impl<'a, T: Real, const M: usize> Split<'a, T, M> {
+impl<T: Real, const M: usize> Split<'_, T, M> {
     /// The split given up front, or none.
     fn given(parts: Option<Parts<T, M>>) -> Self {
         match parts {
             Some(parts) => Self::Ready(parts),
-            None => Self::Absent,
-        }
-    }
-
-    /// The split `compute` gives when first asked for, or none.
-    fn lazy(compute: Option<&'a dyn Fn() -> Parts<T, M>>) -> Self {
-        match compute {
-            Some(compute) => Self::Lazy {
-                compute,
-                parts: OnceCell::new(),
-            },
             None => Self::Absent,
         }
     }
@@ -186,23 +167,48 @@ impl<T: Real, const M: usize> GainStep<'static, T, M> {
 }
 
 impl<'a, T: Real, const M: usize> GainStep<'a, T, M> {
-    /// The view a form builds on its factorisation `nominal` of the
-    /// nominal `C` (its check), the split (if any) computed by `split` only
-    /// if an adapter asks for it; built in place from the form's values.
+    /// Like [`with_factor`](GainStep::with_factor), given the form's
+    /// `L D Lᵀ` of `H P⁻ Hᵀ + R` (the check that it is positive definite)
+    /// instead of the Cholesky factor.
     #[inline(always)]
-    pub(crate) fn on_form(
+    pub(crate) fn with_ldl(
         innovation: SVector<T, M>,
         predicted: SMatrix<T, M, M>,
-        split: Option<&'a dyn Fn() -> Parts<T, M>>,
+        split: Option<Parts<T, M>>,
         noise: SMatrix<T, M, M>,
-        nominal: FormFactor<'a, T, M>,
+        ldl: &'a Ldl<T, M>,
     ) -> Self {
-        let (factor, nominal_ldl) = match nominal {
-            FormFactor::Ldl(ldl) => (OnceCell::new(), Some(ldl)),
-            FormFactor::Cholesky(l) => (OnceCell::from(Some(*l)), None),
+        Self::on_ldl(innovation, predicted, Split::given(split), noise, ldl)
+    }
+
+    /// Like [`with_ldl`](GainStep::with_ldl), the split computed by `split`
+    /// only if an adapter asks for it.
+    #[inline(always)]
+    pub(crate) fn with_lazy_split(
+        innovation: SVector<T, M>,
+        predicted: SMatrix<T, M, M>,
+        split: &'a dyn Fn() -> Parts<T, M>,
+        noise: SMatrix<T, M, M>,
+        ldl: &'a Ldl<T, M>,
+    ) -> Self {
+        let split = Split::Lazy {
+            compute: split,
+            parts: OnceCell::new(),
         };
-        let split = Split::lazy(split);
-        Self::build(innovation, predicted, split, noise, factor, nominal_ldl)
+        Self::on_ldl(innovation, predicted, split, noise, ldl)
+    }
+
+    /// The view on the form's `L D Lᵀ`, nothing factored yet.
+    #[inline(always)]
+    fn on_ldl(
+        innovation: SVector<T, M>,
+        predicted: SMatrix<T, M, M>,
+        split: Split<'a, T, M>,
+        noise: SMatrix<T, M, M>,
+        ldl: &'a Ldl<T, M>,
+    ) -> Self {
+        let factor = OnceCell::new();
+        Self::build(innovation, predicted, split, noise, factor, Some(ldl))
     }
 
     /// The view with nothing adapted yet, built in place (no intermediate
@@ -609,12 +615,12 @@ mod lazy_split_tests {
             parts: &'a dyn Fn() -> Parts<f64, 1>,
             ldl: &'a Ldl<f64, 1>,
         ) -> GainStep<'a, f64, 1> {
-            GainStep::on_form(
+            GainStep::with_lazy_split(
                 Vector1::new(3.0),
                 Matrix1::new(4.0),
-                Some(parts),
+                parts,
                 Matrix1::new(5.0),
-                FormFactor::Ldl(ldl),
+                ldl,
             )
         }
         // Not asked: never computed.
@@ -652,7 +658,7 @@ mod nominal_ldl_tests {
     fn a_view_on_the_forms_ldl_equals_one_on_the_cholesky_factor() {
         let (hph, r, nu) = parts();
         let ldl = Ldl::new(&(hph + r)).unwrap();
-        let from_ldl = GainStep::on_form(nu, hph, None, r, FormFactor::Ldl(&ldl));
+        let from_ldl = GainStep::with_ldl(nu, hph, None, r, &ldl);
         let reference = GainStep::new(nu, hph, None, r).unwrap();
         // Nothing factored until asked.
         assert!(from_ldl.factor.get().is_none());
@@ -674,7 +680,7 @@ mod nominal_ldl_tests {
     fn a_new_noise_drops_the_nominal_factorisation() {
         let (hph, r, nu) = parts();
         let ldl = Ldl::new(&(hph + r)).unwrap();
-        let mut step = GainStep::on_form(nu, hph, None, r, FormFactor::Ldl(&ldl));
+        let mut step = GainStep::with_ldl(nu, hph, None, r, &ldl);
         let r2 = r * 4.0;
         step.set_noise(r2);
         // The NIS is that of H P⁻ Hᵀ + 4 R, from its own L D Lᵀ (no

@@ -36,7 +36,6 @@ mod prior_step;
 mod tuple;
 
 pub use gain_step::GainStep;
-pub(crate) use gain_step::{FormFactor, Parts};
 pub use posterior::Posterior;
 pub use prior_step::PriorStep;
 

@@ -1,17 +1,18 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
-use super::driver::{self, after_predict, Moments, Parts};
-use super::outcome::{dense_gain, dense_unadapted, nominal_ldl, unadapted_report, AdaptedStep};
-use super::pending::{Dense, PendingCovariance, PendingView};
+use super::outcome::{
+    adapt, joseph_gain_on_ldl, nominal_ldl, unadapted_update, used_factorisation,
+};
+use super::pending::PendingCovariance;
 use super::{sequential, FadeStates, Form, PredictForm, SequentialUpdates, UpdateForm};
-use crate::adapter::{FormFactor, NoiseAdapter, PriorAdapter};
-use crate::contract::check_diagonal;
+use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
+use crate::contract::{check_covariance, check_diagonal, check_noise_cached};
 use crate::error::{diagnose, ensure_finite, is_finite};
-use crate::linalg::{mirror_lower, sandwich_into, sandwich_transposed, Ldl};
+use crate::linalg::{mirror_lower, sandwich_into, sandwich_transposed};
 use crate::{
     FilterError, LinearizedMeasurement, LinearizedProcess, Quantity, Real, StateSpace,
-    UpdateOutcome,
+    UpdateOutcome, UpdateReport,
 };
 
 /// The covariance form (Kalman filter, extended Kalman filter): stores `P`,
@@ -128,7 +129,11 @@ impl<T: Real, const N: usize> Form<T, N> for CovarianceForm<T, N> {
     }
 
     fn set_covariance(&mut self, p: &SMatrix<T, N, N>) -> Result<(), FilterError> {
-        self.cov.set_covariance(p)
+        check_covariance(p, Quantity::StateCovariance)?;
+        let mut p = *p;
+        mirror_lower(&mut p);
+        self.cov.commit(p);
+        Ok(())
     }
 }
 
@@ -143,7 +148,11 @@ impl<T: Real, const N: usize, P: LinearizedProcess<T, N>> PredictForm<T, N, P>
         adapter: &mut A,
         _space: &S,
     ) -> Result<(), FilterError> {
-        let q = self.cov.checked_noise(model.noise(x, dt))?;
+        let mut q = model.noise(x, dt);
+        let changed = check_noise_cached(&q, self.cov.noise(), Quantity::ProcessNoise)?;
+        if changed {
+            mirror_lower(&mut q);
+        }
         let phi = model.transition(x, dt);
         let x_new = model.propagate(x, dt);
         // Φ P Φᵀ into the spare buffer, current only once checked (no
@@ -164,9 +173,11 @@ impl<T: Real, const N: usize, P: LinearizedProcess<T, N>> PredictForm<T, N, P>
             })?;
         }
 
-        let fade = after_predict(adapter, dt);
+        let mut step = PriorStep::new(dt);
+        adapter.after_predict(&mut step);
         *x = x_new;
-        self.cov.predicted_spare(q.as_ref(), fade);
+        self.cov
+            .predicted_spare(changed.then_some(&q), step.fade_factor());
         Ok(())
     }
 }
@@ -216,142 +227,112 @@ impl<T: Real, const N: usize, H: LinearizedMeasurement<T, N, M>, const M: usize>
         let nu = model.residual(z, &z_hat);
         let nu_check = |e| diagnose(|| jacobian().and(Err(e)));
         ensure_finite(&nu, Quantity::Measurement).or_else(nu_check)?;
+        let prior = self.cov.prior(T::one());
 
         // Without a factor of `R` (diagonal, taken one component at a time).
         let Some(r_factor) = r_factor.as_ref() else {
-            let prior = self.cov.prior(T::one());
             let out = sequential::update(&prior, &h, &r, &nu)?;
             let x_new = space.add(x, &out.correction);
             ensure_finite(&x_new, Quantity::UpdatedState)?;
             ensure_finite(&out.covariance, Quantity::UpdatedCovariance)?;
             *x = x_new;
             self.cov.commit(out.covariance);
+            let report = UpdateReport {
+                innovation: nu,
+                innovation_used: nu,
+                nis: out.nis,
+                adapted_nis: out.nis,
+                fade: T::one(),
+                rejected: false,
+                sequential: true,
+                adapters: A::Report::default(),
+            };
             let c = &out.innovation_covariance;
-            return Ok(unadapted_report(nu, c, &r, out.nis, T::one(), true));
+            return Ok(O::assemble(report, c, c, &r));
         };
-        let moments = LinearMoments { h: &h, nu };
-        driver::update(&mut self.cov, x, space, adapter, &moments, (&r, r_factor))
-    }
-}
 
-/// The covariance form's moments: `B = P⁻ Hᵀ = (H P⁻)ᵀ` and `H P⁻ Hᵀ` for
-/// the Jacobian `h`, the innovation `nu` computed before them.
-struct LinearMoments<'m, T: Real, const N: usize, const M: usize> {
-    h: &'m SMatrix<T, M, N>,
-    nu: SVector<T, M>,
-}
+        // Without an adapter the update leaves out every adapter step
+        // (nothing to adapt, nothing to copy into a `GainStep`); equal to
+        // the general path to rounding, as a test checks.
+        if A::IS_IDENTITY {
+            let hp = h * prior;
+            let hph = sandwich_transposed(&hp, &h);
+            let noise = (r, r_factor);
+            // `B = P⁻ Hᵀ = (H P⁻)ᵀ`, as the gain's right-hand solves and the
+            // Joseph update take it.
+            let cross = hp.transpose();
+            return unadapted_update(&mut self.cov, x, space, &prior, &cross, &hph, noise, nu)
+                .or_else(|e| diagnose(|| jacobian().and(Err(e))));
+        }
 
-/// `B = P⁻ Hᵀ` (as the gain's right-hand solves and the Joseph update take
-/// it) and `H P⁻ Hᵀ`, one triangle.
-struct LinearOf<T: Real, const N: usize, const M: usize> {
-    cross: SMatrix<T, N, M>,
-    predicted: SMatrix<T, M, M>,
-}
+        // H P⁻ (= (P⁻ Hᵀ)ᵀ) and H P⁻ Hᵀ, one triangle. A fading adapter's
+        // split into propagated and process-noise parts is computed only if
+        // it asks (its divergence test failed).
+        let hp = h * prior;
+        let hph = sandwich_transposed(&hp, &h);
+        // The view borrows what the split is computed from while the
+        // posterior goes into the spare buffer (no copy of the view).
+        let (pending, spare) = self.cov.view_and_spare();
+        let parts = || pending.split(Some(&h), &hph);
+        // Borrowed from the result, not moved out of it (a copy of the
+        // factorisation a step).
+        let nominal = nominal_ldl(&hph, &r);
+        let ldl = match &nominal {
+            Ok(ldl) => ldl,
+            Err(e) => return Err(diagnose(|| jacobian().err().unwrap_or(*e))),
+        };
+        let mut step = if A::NEEDS_SPLIT {
+            GainStep::with_lazy_split(nu, hph, &parts, r, ldl)
+        } else {
+            GainStep::with_ldl(nu, hph, None, r, ldl)
+        };
+        let mut done = adapt(adapter, &mut step);
+        let fade = done.step.fade_factor();
+        if done.step.is_rejected() {
+            let report = done.rejected(nu);
+            self.cov.commit(prior);
+            return Ok(report);
+        }
 
-impl<T: Real, const N: usize, const M: usize> Moments<T, N, M> for LinearMoments<'_, T, N, M> {
-    type Storage = Dense;
-    type Of = LinearOf<T, N, M>;
-    type Nominal = Ldl<T, M>;
+        // Borrowed, not moved: the matrices are hundreds of bytes each.
+        let refaded;
+        let (prior, hp, hph) = if fade == T::one() {
+            (&prior, &hp, &hph)
+        } else {
+            let prior = pending.prior(fade);
+            let hp = h * prior;
+            let hph = sandwich_transposed(&hp, &h);
+            refaded = (prior, hp, hph);
+            (&refaded.0, &refaded.1, &refaded.2)
+        };
+        // By reference: `done.step` holds them (checked finite here).
+        done.check_used()?;
+        let (r_used, nu_used) = (done.step.noise(), done.step.innovation());
+        let c = hph + r_used;
+        let r_factor = done.noise_factor(Some(r_factor));
+        // The view's factorisation of `C` is this `C`'s only when nothing
+        // faded (a fade recomputes `predicted` from the faded prior, which
+        // rounds differently from the view's update). In an epoch the
+        // adapters left as they were it is the nominal `L D Lᵀ`, and this
+        // is the update without adapters, bit for bit.
+        let mut fresh = None;
+        let (ldl, adapted_nis) = used_factorisation(done.step, fade, &c, &mut fresh)?;
+        let cross = hp.transpose();
+        let inputs = (prior, &cross, hph);
+        let correction = joseph_gain_on_ldl(spare, inputs, (r_used, r_factor, &c), ldl, nu_used)?;
+        let x_new = space.add(x, &correction);
+        ensure_finite(&x_new, Quantity::UpdatedState)?;
 
-    #[inline(always)]
-    fn of(
-        &self,
-        prior: &SMatrix<T, N, N>,
-        _x: &SVector<T, N>,
-        _noise_factor: impl FnOnce() -> Result<SMatrix<T, M, M>, FilterError>,
-    ) -> Result<Self::Of, FilterError> {
-        let hp = self.h * prior;
-        let predicted = sandwich_transposed(&hp, self.h);
-        Ok(LinearOf {
-            cross: hp.transpose(),
-            predicted,
-        })
-    }
-
-    #[inline(always)]
-    fn innovation(&self, _of: &Self::Of) -> Result<SVector<T, M>, FilterError> {
-        Ok(self.nu)
-    }
-
-    /// `H` is checked through the outputs: a non-finite `Hᵢⱼ` makes
-    /// `(H P Hᵀ)ᵢᵢ` non-finite (`Hᵢⱼ² Pⱼⱼ`, or `∞ · 0`), which no
-    /// factorisation of `C` passes, and `C` is factored before any adapter
-    /// sees `H P⁻ Hᵀ`. If the update fails, `H` is checked first, as it
-    /// would have been with the inputs.
-    #[inline(always)]
-    fn diagnose(&self, e: FilterError) -> FilterError {
-        diagnose(|| {
-            ensure_finite(self.h, Quantity::MeasurementJacobian)
-                .err()
-                .unwrap_or(e)
-        })
-    }
-
-    #[inline(always)]
-    fn unadapted<S, R, O>(
-        &self,
-        of: &Self::Of,
-        prior: &SMatrix<T, N, N>,
-        spare: &mut SMatrix<T, N, N>,
-        x: &mut SVector<T, N>,
-        space: &S,
-        noise: (&SMatrix<T, M, M>, &SMatrix<T, M, M>),
-        innovation: SVector<T, M>,
-        fade: T,
-    ) -> Result<O, FilterError>
-    where
-        S: StateSpace<T, N>,
-        R: Default,
-        O: UpdateOutcome<T, M, R>,
-    {
-        let moments = (prior, &of.cross, &of.predicted);
-        dense_unadapted(moments, spare, x, space, noise, innovation, fade)
-    }
-
-    #[inline(always)]
-    fn nominal(&self, of: &Self::Of, r: &SMatrix<T, M, M>) -> Result<Ldl<T, M>, FilterError> {
-        nominal_ldl(&of.predicted, r)
-    }
-
-    #[inline(always)]
-    fn split(
-        &self,
-        of: &Self::Of,
-        view: &PendingView<'_, T, N, Dense>,
-        _prior: &SMatrix<T, N, N>,
-        _r: &SMatrix<T, M, M>,
-    ) -> Parts<T, M> {
-        view.split(Some(self.h), &of.predicted)
-    }
-
-    #[inline(always)]
-    fn nominal_view<'s>(
-        &self,
-        of: &'s Self::Of,
-        nominal: &'s Ldl<T, M>,
-    ) -> (&'s SMatrix<T, M, M>, FormFactor<'s, T, M>) {
-        (&of.predicted, FormFactor::Ldl(nominal))
-    }
-
-    #[inline(always)]
-    fn gain<A, S, O>(
-        &self,
-        of: &Self::Of,
-        prior: &SMatrix<T, N, N>,
-        spare: &mut SMatrix<T, N, N>,
-        x: &mut SVector<T, N>,
-        space: &S,
-        done: AdaptedStep<'_, '_, T, M, A::Report>,
-        fades: (SVector<T, M>, T, T),
-        noise_factor: &SMatrix<T, M, M>,
-        adapter: &mut A,
-    ) -> Result<O, FilterError>
-    where
-        A: NoiseAdapter<T, M>,
-        S: StateSpace<T, N>,
-        O: UpdateOutcome<T, M, A::Report>,
-    {
-        let moments = (prior, &of.cross, &of.predicted);
-        dense_gain(moments, spare, x, space, done, fades, noise_factor, adapter)
+        // Nothing below can fail: the adapters see the update before the
+        // posterior in the spare buffer becomes current.
+        *x = x_new;
+        let total_fade = pending.total_fade(fade);
+        adapter.after_update(
+            &Posterior::on_ldl(nu_used, hph, r_used, ldl),
+            &mut done.adapters,
+        );
+        let report = done.accepted(nu, &c, adapted_nis, total_fade);
+        self.cov.commit_spare();
+        Ok(report)
     }
 }

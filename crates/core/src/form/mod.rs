@@ -6,10 +6,10 @@
 mod checked_noise;
 mod covariance;
 mod double_buffer;
-mod driver;
 mod fade_states;
 mod outcome;
 mod pending;
+mod pending_factor;
 mod sequential;
 mod sequential_updates;
 mod square_root;

@@ -3,7 +3,8 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use crate::adapter::{GainStep, NoiseAdapter, Posterior};
+use super::pending::PendingCovariance;
+use crate::adapter::{GainStep, NoiseAdapter};
 use crate::error::ensure_finite;
 use crate::linalg::{
     cholesky_semidefinite, joseph_expanded, joseph_factored_noise_negated, solve_lower, Ldl,
@@ -55,31 +56,31 @@ fn joseph_with_gain<T: Real, const N: usize, const M: usize>(
     ensure_finite(covariance, Quantity::UpdatedCovariance)
 }
 
-/// The dense update without adapters, for the cross covariance
-/// `B = P⁻ Hᵀ` (or `P_xz`), the predicted measurement covariance
+/// The update without adapters, for the cross covariance `B = P⁻ Hᵀ` (or
+/// `P_xz`), the predicted measurement covariance
 /// `predicted` (`H P⁻ Hᵀ` or `P_zz`), `R` with its lower Cholesky factor
-/// and the innovation: the Joseph update of `prior` into `spare`, the
-/// updated `x` once it is checked, and the report (nothing adapted) for the
-/// total fade `fade`.
+/// and the innovation: the Joseph update of `prior` into the spare buffer
+/// of `cov`, made current once it and the updated `x` are checked, and the
+/// report (nothing adapted).
 ///
 /// No adapter reads a factor of `C` here, so `C` is factored without square
 /// roots ([`Ldl`]): on the chain from one covariance to the next they
 /// would set the pace at small sizes.
 #[allow(clippy::too_many_arguments)]
 #[inline]
-pub(crate) fn dense_unadapted<T, const N: usize, const M: usize, S, R, O>(
-    (prior, cross, predicted): (&SMatrix<T, N, N>, &SMatrix<T, N, M>, &SMatrix<T, M, M>),
-    spare: &mut SMatrix<T, N, N>,
+pub(crate) fn unadapted_update<T, const N: usize, const M: usize, R: Default, S, O>(
+    cov: &mut PendingCovariance<T, N>,
     x: &mut SVector<T, N>,
     space: &S,
-    (noise, noise_factor): (&SMatrix<T, M, M>, &SMatrix<T, M, M>),
+    prior: &SMatrix<T, N, N>,
+    cross: &SMatrix<T, N, M>,
+    predicted: &SMatrix<T, M, M>,
+    (noise, noise_factor): (SMatrix<T, M, M>, &SMatrix<T, M, M>),
     innovation: SVector<T, M>,
-    fade: T,
 ) -> Result<O, FilterError>
 where
     T: Real,
     S: StateSpace<T, N>,
-    R: Default,
     O: UpdateOutcome<T, M, R>,
 {
     let c = predicted + noise;
@@ -89,72 +90,23 @@ where
     // Written out, not through a helper shared with `joseph_gain_on_ldl`:
     // through one the compiler inlined the Joseph update differently, and
     // the KF step at 15 states took 31,211 instructions instead of 29,673.
+    let spare = cov.spare();
     joseph_with_gain(
         spare,
         prior,
         &negated_k,
         cross,
         predicted,
-        noise,
+        &noise,
         Some(noise_factor),
         &c,
     )?;
     let x_new = space.add(x, &correction(&negated_k, &innovation));
     ensure_finite(&x_new, Quantity::UpdatedState)?;
     *x = x_new;
-    Ok(unadapted_report(innovation, &c, noise, nis, fade, false))
-}
-
-/// The dense update after the adapters, for the cross covariance `B` and
-/// the predicted measurement covariance of `prior` (those of the faded
-/// prior after a fade): the gain on the `L D Lᵀ` of `C` as the adapters
-/// left it ([`used_factorisation`]), the Joseph update into `spare`
-/// ([`joseph_gain_on_ldl`]), the updated `x` once it is checked, the
-/// adapters' `after_update` on the same factorisation and the report.
-/// `noise_factor` is the model's factor of `R`. In an epoch the adapters
-/// left as they were this is the update without adapters, bit for bit.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-pub(crate) fn dense_gain<T, const N: usize, const M: usize, A, S, O>(
-    (prior, cross, predicted): (&SMatrix<T, N, N>, &SMatrix<T, N, M>, &SMatrix<T, M, M>),
-    spare: &mut SMatrix<T, N, N>,
-    x: &mut SVector<T, N>,
-    space: &S,
-    mut done: AdaptedStep<'_, '_, T, M, A::Report>,
-    (innovation, fade, total_fade): (SVector<T, M>, T, T),
-    noise_factor: &SMatrix<T, M, M>,
-    adapter: &mut A,
-) -> Result<O, FilterError>
-where
-    T: Real,
-    A: NoiseAdapter<T, M>,
-    S: StateSpace<T, N>,
-    O: UpdateOutcome<T, M, A::Report>,
-{
-    // By reference: `done.step` holds them (checked finite).
-    let (r_used, nu_used) = (done.step.noise(), done.step.innovation());
-    // Element by element into the result (nalgebra's `+` returns through
-    // a temporary and a copy).
-    let c = SMatrix::from_fn(|i, j| predicted[(i, j)] + r_used[(i, j)]);
-    let r_factor = done.noise_factor(Some(noise_factor));
-    // The view's factorisation of `C` is this `C`'s only when nothing
-    // faded (a fade recomputes `predicted` from the faded prior, which
-    // rounds differently from the view's update).
-    let mut fresh = None;
-    let (ldl, adapted_nis) = used_factorisation(done.step, fade, &c, &mut fresh)?;
-    let inputs = (prior, cross, predicted);
-    let correction = joseph_gain_on_ldl(spare, inputs, (r_used, r_factor, &c), ldl, nu_used)?;
-    let x_new = space.add(x, &correction);
-    ensure_finite(&x_new, Quantity::UpdatedState)?;
-
-    // Nothing below can fail: the adapters see the update before the
-    // posterior in the spare buffer becomes current.
-    *x = x_new;
-    adapter.after_update(
-        &Posterior::on_ldl(nu_used, predicted, r_used, ldl),
-        &mut done.adapters,
-    );
-    Ok(done.accepted(innovation, &c, adapted_nis, total_fade))
+    let fade = cov.total_fade(T::one());
+    cov.commit_spare();
+    Ok(unadapted_report(innovation, &c, &noise, nis, fade))
 }
 
 /// `−K = −B C⁻¹` on the `L D Lᵀ` of `C`, for `B = P⁻ Hᵀ`: the gain of the
@@ -219,9 +171,8 @@ pub(crate) fn joseph_gain_on_ldl<T: Real, const N: usize, const M: usize>(
     Ok(correction(&negated_k, innovation))
 }
 
-/// The outcome of an update without adapters (`sequential`: by sequential
-/// scalar updates): nothing adapted, so the innovation and its covariance
-/// are the nominal ones.
+/// The outcome of an update without adapters: nothing adapted, so the
+/// innovation and its covariance are the nominal ones.
 #[inline(always)]
 pub(crate) fn unadapted_report<T: Real, const M: usize, R: Default, O: UpdateOutcome<T, M, R>>(
     innovation: SVector<T, M>,
@@ -229,7 +180,6 @@ pub(crate) fn unadapted_report<T: Real, const M: usize, R: Default, O: UpdateOut
     noise: &SMatrix<T, M, M>,
     nis: T,
     fade: T,
-    sequential: bool,
 ) -> O {
     let report = UpdateReport {
         innovation,
@@ -238,7 +188,7 @@ pub(crate) fn unadapted_report<T: Real, const M: usize, R: Default, O: UpdateOut
         adapted_nis: nis,
         fade,
         rejected: false,
-        sequential,
+        sequential: false,
         adapters: R::default(),
     };
     O::assemble(report, c, c, noise)
@@ -309,6 +259,13 @@ pub(crate) fn adapt<'s, 'a, T: Real, const M: usize, A: NoiseAdapter<T, M>>(
 }
 
 impl<T: Real, const M: usize, R> AdaptedStep<'_, '_, T, M, R> {
+    /// The noise and innovation the adapters settled on, checked finite.
+    #[inline(always)]
+    pub fn used(&self) -> Result<(SMatrix<T, M, M>, SVector<T, M>), FilterError> {
+        self.check_used()?;
+        Ok((*self.step.noise(), *self.step.innovation()))
+    }
+
     /// The lower factor of the `R` the adapters settled on, when one is
     /// known: the model's (`model`) if no adapter replaced `R`, else the one
     /// an adapter gave with it ([`GainStep::set_noise_factor`]).
@@ -338,17 +295,21 @@ impl<T: Real, const M: usize, R> AdaptedStep<'_, '_, T, M, R> {
     /// The outcome of a measurement an adapter rejected.
     #[inline(always)]
     pub fn rejected<O: UpdateOutcome<T, M, R>>(self, innovation: SVector<T, M>) -> O {
-        let step = &*self.step;
-        let adapted_nis = step.mahalanobis().unwrap_or_else(T::zero);
-        let c = step.innovation_covariance();
-        adapted_report(
-            step,
-            self.nis,
-            self.adapters,
+        let report = UpdateReport {
             innovation,
-            adapted_nis,
-            None,
-            c,
+            innovation_used: *self.step.innovation(),
+            nis: self.nis,
+            adapted_nis: self.step.mahalanobis().unwrap_or_else(T::zero),
+            fade: T::one(),
+            rejected: true,
+            sequential: false,
+            adapters: self.adapters,
+        };
+        O::assemble(
+            report,
+            &self.step.nominal_innovation_covariance(),
+            self.step.innovation_covariance(),
+            self.step.noise(),
         )
     }
 
@@ -378,47 +339,21 @@ impl<T: Real, const M: usize, R> AdaptedStep<'_, '_, T, M, R> {
         adapted_nis: T,
         fade: T,
     ) -> O {
-        let step = &*self.step;
-        adapted_report(
-            step,
-            self.nis,
-            self.adapters,
+        let report = UpdateReport {
             innovation,
+            innovation_used: *self.step.innovation(),
+            nis: self.nis,
             adapted_nis,
-            Some(fade),
+            fade,
+            rejected: false,
+            sequential: false,
+            adapters: self.adapters,
+        };
+        O::assemble(
+            report,
+            &self.step.nominal_innovation_covariance(),
             c,
+            self.step.noise(),
         )
     }
-}
-
-/// The outcome of an update the adapters saw, from their view `step`, the
-/// NIS before them and their reports: for the raw innovation, the adapted
-/// NIS, the total fade of an accepted update (`None`: rejected, nothing
-/// faded) and the innovation covariance used.
-#[inline(always)]
-fn adapted_report<T: Real, const M: usize, R, O: UpdateOutcome<T, M, R>>(
-    step: &GainStep<'_, T, M>,
-    nis: T,
-    adapters: R,
-    innovation: SVector<T, M>,
-    adapted_nis: T,
-    fade: Option<T>,
-    c: &SMatrix<T, M, M>,
-) -> O {
-    let report = UpdateReport {
-        innovation,
-        innovation_used: *step.innovation(),
-        nis,
-        adapted_nis,
-        fade: fade.unwrap_or_else(T::one),
-        rejected: fade.is_none(),
-        sequential: false,
-        adapters,
-    };
-    O::assemble(
-        report,
-        &step.nominal_innovation_covariance(),
-        c,
-        step.noise(),
-    )
 }

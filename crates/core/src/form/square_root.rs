@@ -1,17 +1,17 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
-use super::driver::{self, after_predict, faded, used_noise_factor, Moments, Parts};
-use super::outcome::{not_pd, unadapted_report, AdaptedStep};
-use super::pending::{Factor, PendingFactor, PendingView};
+use super::outcome::{adapt, not_pd, unadapted_report};
+use super::pending_factor::PendingFactor;
 use super::unscented::effective_jacobian;
 use super::{FadeStates, Form, PredictForm, UpdateForm};
-use crate::adapter::{FormFactor, NoiseAdapter, Posterior, PriorAdapter};
+use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
+use crate::contract::check_covariance;
 use crate::error::ensure_finite;
 use crate::linalg::{
-    add_columns_by_rows, downdate_columns_in_place, downdate_in_place, lower_times_transpose,
-    mirror_lower, mul_lower, mul_vector, solve_lower, solve_right_cholesky, update_in_place,
-    weighted_rank_one_in_place,
+    add_columns_by_rows, cholesky_semidefinite, downdate_columns_in_place, downdate_in_place,
+    lower_times_transpose, mirror_lower, mul_lower, mul_vector, solve_lower, solve_right_cholesky,
+    update_in_place, weighted_rank_one_in_place,
 };
 use crate::real::finite;
 use crate::sigma::{self, MeasuredSigma, MerweParams, Pairs, SigmaWeights};
@@ -59,10 +59,12 @@ pub enum TimeUpdate {
 /// Sources: see the [references](crate::references).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SquareRootForm<T: Real, const N: usize> {
-    /// The factor, with any pending process noise and the after-predict
-    /// fade already folded in (for the report); a step writes the next one
-    /// into its spare buffer and makes it current once checked.
+    /// The factor, with any pending process noise; a step writes the next
+    /// one into its spare buffer and makes it current once checked.
     factor: PendingFactor<T, N>,
+    /// The after-predict fade already folded into the factor, for the
+    /// report.
+    predict_fade: T,
     params: MerweParams<T>,
     weights: SigmaWeights<T>,
     time_update: TimeUpdate,
@@ -83,6 +85,7 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
         })?;
         let mut form = Self {
             factor: PendingFactor::new(SMatrix::zeros()),
+            predict_fade: T::one(),
             params,
             weights,
             time_update: TimeUpdate::default(),
@@ -98,7 +101,7 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
     pub fn from_factor(s: &SMatrix<T, N, N>) -> Result<Self, FilterError> {
         ensure_finite(s, Quantity::StateCovariance)?;
         let mut form = Self::new(&SMatrix::zeros())?;
-        form.factor.commit(s.lower_triangle());
+        form.commit(s.lower_triangle());
         Ok(form)
     }
 
@@ -144,7 +147,20 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
     /// The lower Cholesky factor `S` of the covariance (with any pending
     /// process noise merged in).
     pub fn factor(&self) -> SMatrix<T, N, N> {
-        self.factor.prior(T::one())
+        self.factor.view().merged(T::one())
+    }
+
+    /// Makes `s` the factor of the posterior.
+    fn commit(&mut self, s: SMatrix<T, N, N>) {
+        self.factor.commit(s);
+        self.predict_fade = T::one();
+    }
+
+    /// Makes the spare buffer, which holds the factor of the posterior,
+    /// current.
+    fn commit_spare(&mut self) {
+        self.factor.commit_spare();
+        self.predict_fade = T::one();
     }
 
     /// Folds `Σ w dᵢ dᵢᵀ` over the pairs into `start`, by the configured method.
@@ -214,6 +230,16 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
     }
 }
 
+/// The factor of an `R` an adapter set (it may be singular, not indefinite).
+fn noise_factor<T: Real, const M: usize>(
+    r: &SMatrix<T, M, M>,
+) -> Result<SMatrix<T, M, M>, FilterError> {
+    cholesky_semidefinite(r).map_err(|e| FilterError::NotPositiveDefinite {
+        what: Quantity::MeasurementNoise,
+        index: e.index,
+    })
+}
+
 impl<T: Real, const N: usize> Form<T, N> for SquareRootForm<T, N> {
     fn covariance(&self) -> SMatrix<T, N, N> {
         let s = self.factor();
@@ -223,7 +249,9 @@ impl<T: Real, const N: usize> Form<T, N> for SquareRootForm<T, N> {
     }
 
     fn set_covariance(&mut self, p: &SMatrix<T, N, N>) -> Result<(), FilterError> {
-        self.factor.set_covariance(p)
+        let s = check_covariance(p, Quantity::StateCovariance)?;
+        self.commit(s);
+        Ok(())
     }
 }
 
@@ -243,17 +271,13 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Sq
         let sq = self.process_noise.check_full(&q, Quantity::ProcessNoise)?;
         let states = self.factor.fade_states();
         let (view, factor) = self.factor.view_and_spare();
-        let merged;
-        let s = match view.borrowed() {
-            Some(s) => s,
-            None => {
-                merged = view.prior(T::one());
-                &merged
-            }
-        };
+        let mut merged = None;
+        let s = view.current(&mut merged);
         let mut propagated = sigma::propagate(x, s, &self.weights, model, dt, space)?;
 
-        let lambda = after_predict(adapter, dt);
+        let mut step = PriorStep::new(dt);
+        adapter.after_predict(&mut step);
+        let lambda = step.fade_factor();
         if A::NEEDS_SPLIT {
             factor.fill(T::zero());
         } else {
@@ -286,10 +310,11 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Sq
 
         *x = propagated.mean;
         if A::NEEDS_SPLIT {
-            self.factor.predicted_spare(Some(sq), lambda);
+            self.factor.predicted_spare(sq);
         } else {
-            self.factor.folded_spare(lambda);
+            self.commit_spare();
         }
+        self.predict_fade = lambda;
         Ok(())
     }
 }
@@ -316,207 +341,88 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
             .measurement_noise
             .check(&r, Quantity::MeasurementNoise)?;
         mirror_lower(&mut r);
-        let moments = FactorMoments {
-            model,
-            z,
-            r: &r,
-            weights: self.weights,
-            method: self.time_update,
-            space,
-        };
-        driver::update(&mut self.factor, x, space, adapter, &moments, (&r, &sr))
-    }
-}
+        let (w, method) = (self.weights, self.time_update);
 
-/// The square-root form's moments: the sigma points' `P_xz` and the
-/// factor `S_z` of `C = P_zz + R`, through the measurement model `model`,
-/// for the measurement `z`.
-struct FactorMoments<'m, T: Real, const M: usize, H, S> {
-    model: &'m H,
-    z: &'m SVector<T, M>,
-    r: &'m SMatrix<T, M, M>,
-    weights: SigmaWeights<T>,
-    method: TimeUpdate,
-    space: &'m S,
-}
-
-/// The sigma points of a prior factor through the measurement model, the
-/// factor `S_z` of `C`, `C = S_z S_zᵀ` and `C − R` (for the model's `R`).
-struct FactorOf<T: Real, const N: usize, const M: usize> {
-    measured: MeasuredSigma<T, N, M>,
-    sz: SMatrix<T, M, M>,
-    c: SMatrix<T, M, M>,
-    predicted: SMatrix<T, M, M>,
-}
-
-impl<T, const N: usize, const M: usize, H, Sp> Moments<T, N, M> for FactorMoments<'_, T, M, H, Sp>
-where
-    T: Real,
-    H: MeasurementModel<T, N, M>,
-    Sp: StateSpace<T, N>,
-{
-    type Storage = Factor;
-    type Of = FactorOf<T, N, M>;
-    /// The view is built on `S_z`, one of the moments.
-    type Nominal = ();
-
-    /// `S_z` is made from the factor of the `R` used.
-    const CHECKS_BEFORE_REFADE: bool = true;
-
-    #[inline(always)]
-    fn of(
-        &self,
-        prior: &SMatrix<T, N, N>,
-        x: &SVector<T, N>,
-        noise_factor: impl FnOnce() -> Result<SMatrix<T, M, M>, FilterError>,
-    ) -> Result<Self::Of, FilterError> {
-        let w = &self.weights;
-        let measured = sigma::measure(x, prior, w, self.model, self.space)?;
-        let sz = SquareRootForm::innovation_factor(self.method, w, &measured, &noise_factor()?)?;
+        let (view, spare) = self.factor.view_and_spare();
+        let mut merged = None;
+        let prior = view.current(&mut merged);
+        let measured = sigma::measure(x, prior, &w, model, space)?;
+        let sz = Self::innovation_factor(method, &w, &measured, &sr)?;
         let c = lower_times_transpose(&sz);
-        let predicted = c - self.r;
-        Ok(FactorOf {
-            measured,
-            sz,
-            c,
-            predicted,
-        })
-    }
-
-    #[inline(always)]
-    fn innovation(&self, of: &Self::Of) -> Result<SVector<T, M>, FilterError> {
-        let nu = self.model.residual(self.z, &of.measured.z_hat);
+        let nu = model.residual(z, &measured.z_hat);
         ensure_finite(&nu, Quantity::Measurement)?;
-        Ok(nu)
-    }
 
-    /// The downdate of the prior factor (see
-    /// [`downdate_into`](SquareRootForm::downdate_into)) and the NIS
-    /// through `S_z`.
-    #[inline(always)]
-    fn unadapted<S, R, O>(
-        &self,
-        of: &Self::Of,
-        prior: &SMatrix<T, N, N>,
-        spare: &mut SMatrix<T, N, N>,
-        x: &mut SVector<T, N>,
-        space: &S,
-        (r, _): (&SMatrix<T, M, M>, &SMatrix<T, M, M>),
-        innovation: SVector<T, M>,
-        fade: T,
-    ) -> Result<O, FilterError>
-    where
-        S: StateSpace<T, N>,
-        R: Default,
-        O: UpdateOutcome<T, M, R>,
-    {
-        let cross = &of.measured.cross;
-        let x_new =
-            SquareRootForm::downdate_into(spare, prior, cross, &of.sz, &innovation, x, space)?;
-        let mut white = innovation;
-        solve_lower(&of.sz, &mut white);
-        *x = x_new;
-        Ok(unadapted_report(
-            innovation,
-            &of.c,
-            r,
-            white.norm_squared(),
-            fade,
-            false,
-        ))
-    }
-
-    #[inline(always)]
-    fn nominal(&self, _of: &Self::Of, _r: &SMatrix<T, M, M>) -> Result<(), FilterError> {
-        Ok(())
-    }
-
-    /// Through the statistical linearisation `H = P_xzᵀ P⁻¹` (all of `P_zz`
-    /// propagated where `P` is singular).
-    #[inline(always)]
-    fn split(
-        &self,
-        of: &Self::Of,
-        view: &PendingView<'_, T, N, Factor>,
-        prior: &SMatrix<T, N, N>,
-        r: &SMatrix<T, M, M>,
-    ) -> Parts<T, M> {
-        effective_jacobian(prior, &of.measured.cross)
-            .and_then(|h| view.split(&h))
-            .unwrap_or((of.c - r, SMatrix::zeros()))
-    }
-
-    #[inline(always)]
-    fn nominal_view<'s>(
-        &self,
-        of: &'s Self::Of,
-        _nominal: &'s (),
-    ) -> (&'s SMatrix<T, M, M>, FormFactor<'s, T, M>) {
-        (&of.predicted, FormFactor::Cholesky(&of.sz))
-    }
-
-    /// Also when only `R` changed: `S_z` is made from its factor.
-    #[inline(always)]
-    fn refaded<R>(
-        &self,
-        of: &Self::Of,
-        view: &PendingView<'_, T, N, Factor>,
-        prior: &SMatrix<T, N, N>,
-        (fade, done): (T, &AdaptedStep<'_, '_, T, M, R>),
-        x: &SVector<T, N>,
-        noise_factor: &SMatrix<T, M, M>,
-        refaded: &mut Option<(SMatrix<T, N, N>, Self::Of)>,
-    ) -> Result<(), FilterError> {
-        if fade != T::one() {
-            return faded(self, view, (fade, done), x, noise_factor, refaded);
+        if A::IS_IDENTITY {
+            // Nothing to adapt: the adapter round left out (equal to it to
+            // rounding, as a test checks).
+            let x_new = Self::downdate_into(spare, prior, &measured.cross, &sz, &nu, x, space)?;
+            let mut white = nu;
+            solve_lower(&sz, &mut white);
+            *x = x_new;
+            let total_fade = self.predict_fade;
+            self.commit_spare();
+            return Ok(unadapted_report(
+                nu,
+                &c,
+                &r,
+                white.norm_squared(),
+                total_fade,
+            ));
         }
-        if !done.step.noise_changed() {
-            return Ok(());
+
+        let prior = *prior;
+        let split = A::NEEDS_SPLIT.then(|| {
+            effective_jacobian(&prior, &measured.cross)
+                .and_then(|h| self.factor.split(&h))
+                .unwrap_or((c - r, SMatrix::zeros()))
+        });
+        let mut step = GainStep::with_factor(nu, c - r, split, r, sz);
+        let mut done = adapt(adapter, &mut step);
+        let fade = done.step.fade_factor();
+        if done.step.is_rejected() {
+            self.commit(prior);
+            return Ok(done.rejected(nu));
         }
-        let l = used_noise_factor(done, noise_factor)?;
-        let sz = SquareRootForm::innovation_factor(self.method, &self.weights, &of.measured, &l)?;
-        let c = lower_times_transpose(&sz);
-        let of = FactorOf {
-            measured: of.measured.clone(),
-            predicted: c - self.r,
-            sz,
-            c,
+
+        let (r_used, nu_used) = done.used()?;
+        // The factor of the `R` used: the model's, the one an adapter gave
+        // with its `R`, or one computed here.
+        let used_factor = || {
+            done.noise_factor(Some(&sr))
+                .map_or_else(|| noise_factor(&r_used), |l| Ok(*l))
         };
-        *refaded = Some((*prior, of));
-        Ok(())
-    }
+        let (prior, measured, sz) = if fade != T::one() {
+            let prior = self.factor.view().merged(fade);
+            let measured = sigma::measure(x, &prior, &w, model, space)?;
+            let sz = Self::innovation_factor(method, &w, &measured, &used_factor()?)?;
+            (prior, measured, sz)
+        } else if done.step.noise_changed() {
+            let sz = Self::innovation_factor(method, &w, &measured, &used_factor()?)?;
+            (prior, measured, sz)
+        } else {
+            (prior, measured, sz)
+        };
+        let c = lower_times_transpose(&sz);
+        let x_new = Self::downdate_into(
+            self.factor.spare(),
+            &prior,
+            &measured.cross,
+            &sz,
+            &nu_used,
+            x,
+            space,
+        )?;
 
-    #[inline(always)]
-    fn gain<A, S, O>(
-        &self,
-        of: &Self::Of,
-        prior: &SMatrix<T, N, N>,
-        spare: &mut SMatrix<T, N, N>,
-        x: &mut SVector<T, N>,
-        space: &S,
-        mut done: AdaptedStep<'_, '_, T, M, A::Report>,
-        (innovation, _, total_fade): (SVector<T, M>, T, T),
-        _noise_factor: &SMatrix<T, M, M>,
-        adapter: &mut A,
-    ) -> Result<O, FilterError>
-    where
-        A: NoiseAdapter<T, M>,
-        S: StateSpace<T, N>,
-        O: UpdateOutcome<T, M, A::Report>,
-    {
-        let (r_used, nu_used) = (done.step.noise(), done.step.innovation());
-        let cross = &of.measured.cross;
-        let x_new = SquareRootForm::downdate_into(spare, prior, cross, &of.sz, nu_used, x, space)?;
-
-        // Nothing below can fail.
         *x = x_new;
-        let predicted = of.c - r_used;
-        let white = done.whitened(&of.sz);
+        let total_fade = self.predict_fade * fade;
+        self.commit_spare();
+        let predicted = c - r_used;
+        let white = done.whitened(&sz);
         adapter.after_update(
-            &Posterior::with_whitened(nu_used, &white, &predicted, r_used, &of.sz),
+            &Posterior::with_whitened(&nu_used, &white, &predicted, &r_used, &sz),
             &mut done.adapters,
         );
-        Ok(done.accepted(innovation, &of.c, white.norm_squared(), total_fade))
+        Ok(done.accepted(nu, &c, white.norm_squared(), total_fade))
     }
 }
 

@@ -1,17 +1,19 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::checked_noise::CheckedNoise;
-use super::driver::{self, after_predict, Moments, Parts};
-use super::outcome::{dense_gain, dense_unadapted, nominal_ldl, AdaptedStep};
-use super::pending::{Dense, PendingCovariance, PendingView};
+use super::outcome::{
+    adapt, joseph_gain_on_ldl, nominal_ldl, unadapted_update, used_factorisation,
+};
+use super::pending::PendingCovariance;
 use super::{FadeStates, Form, PredictForm, UpdateForm};
-use crate::adapter::{FormFactor, NoiseAdapter, PriorAdapter};
+use crate::adapter::{GainStep, NoiseAdapter, Posterior, PriorAdapter, PriorStep};
+use crate::contract::{check_covariance, check_noise_cached};
 use crate::error::ensure_finite;
 use crate::linalg::{
-    cholesky_semidefinite_in_place, mirror_lower, solve_lower, solve_lower_transpose, Ldl,
+    cholesky_semidefinite_in_place, mirror_lower, solve_lower, solve_lower_transpose,
 };
 use crate::real::finite;
-use crate::sigma::{self, MeasuredSigma, MerweParams, SigmaWeights};
+use crate::sigma::{self, MerweParams, SigmaWeights};
 use crate::{
     FilterError, MeasurementModel, ProcessModel, Quantity, Real, StateSpace, UpdateOutcome,
 };
@@ -138,7 +140,11 @@ impl<T: Real, const N: usize> Form<T, N> for UnscentedForm<T, N> {
     }
 
     fn set_covariance(&mut self, p: &SMatrix<T, N, N>) -> Result<(), FilterError> {
-        self.cov.set_covariance(p)
+        check_covariance(p, Quantity::StateCovariance)?;
+        let mut p = *p;
+        mirror_lower(&mut p);
+        self.cov.commit(p);
+        Ok(())
     }
 }
 
@@ -151,7 +157,11 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Un
         adapter: &mut A,
         space: &S,
     ) -> Result<(), FilterError> {
-        let q = self.cov.checked_noise(model.noise(x, dt))?;
+        let mut q = model.noise(x, dt);
+        let changed = check_noise_cached(&q, self.cov.noise(), Quantity::ProcessNoise)?;
+        if changed {
+            mirror_lower(&mut q);
+        }
         let mut s = self.cov.prior(T::one());
         factor_in_place(&mut s)?;
         let propagated = sigma::propagate(x, &s, &self.weights, model, dt, space)?;
@@ -160,9 +170,11 @@ impl<T: Real, const N: usize, P: ProcessModel<T, N>> PredictForm<T, N, P> for Un
         propagated.covariance_into(p, &self.weights);
         ensure_finite(p, Quantity::PropagatedCovariance)?;
 
-        let fade = after_predict(adapter, dt);
+        let mut step = PriorStep::new(dt);
+        adapter.after_predict(&mut step);
         *x = propagated.mean;
-        self.cov.predicted_spare(q.as_ref(), fade);
+        self.cov
+            .predicted_spare(changed.then_some(&q), step.fade_factor());
         Ok(())
     }
 }
@@ -187,130 +199,81 @@ impl<T: Real, const N: usize, H: MeasurementModel<T, N, M>, const M: usize> Upda
         let mut r = model.noise();
         let r_factor = self.noise.check(&r, Quantity::MeasurementNoise)?;
         mirror_lower(&mut r);
-        let moments = SigmaMoments {
-            model,
-            z,
-            weights: self.weights,
-            space,
-        };
-        driver::update(&mut self.cov, x, space, adapter, &moments, (&r, &r_factor))
-    }
-}
+        let w = self.weights;
 
-/// The unscented form's moments: the sigma points' `P_xz` and `P_zz`
-/// through the measurement model `model`, for the measurement `z`.
-struct SigmaMoments<'m, T: Real, const M: usize, H, S> {
-    model: &'m H,
-    z: &'m SVector<T, M>,
-    weights: SigmaWeights<T>,
-    space: &'m S,
-}
-
-/// The sigma points of a prior through the measurement model, drawn from
-/// the factor `s` of the prior, and their `P_zz`.
-struct SigmaOf<T: Real, const N: usize, const M: usize> {
-    s: SMatrix<T, N, N>,
-    measured: MeasuredSigma<T, N, M>,
-    pzz: SMatrix<T, M, M>,
-}
-
-impl<T, const N: usize, const M: usize, H, Sp> Moments<T, N, M> for SigmaMoments<'_, T, M, H, Sp>
-where
-    T: Real,
-    H: MeasurementModel<T, N, M>,
-    Sp: StateSpace<T, N>,
-{
-    type Storage = Dense;
-    type Of = SigmaOf<T, N, M>;
-    type Nominal = Ldl<T, M>;
-
-    #[inline(always)]
-    fn of(
-        &self,
-        prior: &SMatrix<T, N, N>,
-        x: &SVector<T, N>,
-        _noise_factor: impl FnOnce() -> Result<SMatrix<T, M, M>, FilterError>,
-    ) -> Result<Self::Of, FilterError> {
-        let s = factor(prior)?;
-        let measured = sigma::measure(x, &s, &self.weights, self.model, self.space)?;
-        let pzz = measured.covariance(&self.weights);
-        Ok(SigmaOf { s, measured, pzz })
-    }
-
-    #[inline(always)]
-    fn innovation(&self, of: &Self::Of) -> Result<SVector<T, M>, FilterError> {
-        let nu = self.model.residual(self.z, &of.measured.z_hat);
+        let prior = self.cov.prior(T::one());
+        let s = factor(&prior)?;
+        let measured = sigma::measure(x, &s, &w, model, space)?;
+        let pzz = measured.covariance(&w);
+        let nu = model.residual(z, &measured.z_hat);
         ensure_finite(&nu, Quantity::Measurement)?;
-        Ok(nu)
-    }
 
-    #[inline(always)]
-    fn unadapted<S, R, O>(
-        &self,
-        of: &Self::Of,
-        prior: &SMatrix<T, N, N>,
-        spare: &mut SMatrix<T, N, N>,
-        x: &mut SVector<T, N>,
-        space: &S,
-        noise: (&SMatrix<T, M, M>, &SMatrix<T, M, M>),
-        innovation: SVector<T, M>,
-        fade: T,
-    ) -> Result<O, FilterError>
-    where
-        S: StateSpace<T, N>,
-        R: Default,
-        O: UpdateOutcome<T, M, R>,
-    {
-        let moments = (prior, &of.measured.cross, &of.pzz);
-        dense_unadapted(moments, spare, x, space, noise, innovation, fade)
-    }
+        if A::IS_IDENTITY {
+            // Nothing to adapt: the adapter round left out (equal to it to
+            // rounding, as a test checks).
+            let noise = (r, &r_factor);
+            return unadapted_update(
+                &mut self.cov,
+                x,
+                space,
+                &prior,
+                &measured.cross,
+                &pzz,
+                noise,
+                nu,
+            );
+        }
 
-    #[inline(always)]
-    fn nominal(&self, of: &Self::Of, r: &SMatrix<T, M, M>) -> Result<Ldl<T, M>, FilterError> {
-        nominal_ldl(&of.pzz, r)
-    }
+        let split = A::NEEDS_SPLIT.then(|| {
+            let h = effective_jacobian(&s, &measured.cross);
+            self.cov.split(h.as_ref(), &pzz)
+        });
+        // Borrowed from the result, not moved out of it (a copy of the
+        // factorisation a step).
+        let nominal = nominal_ldl(&pzz, &r);
+        let ldl = nominal.as_ref().map_err(|e| *e)?;
+        let mut step = GainStep::with_ldl(nu, pzz, split, r, ldl);
+        let mut done = adapt(adapter, &mut step);
+        let fade = done.step.fade_factor();
+        if done.step.is_rejected() {
+            self.cov.commit(prior);
+            return Ok(done.rejected(nu));
+        }
 
-    /// Through the statistical linearisation `H = P_xzᵀ P⁻¹`.
-    #[inline(always)]
-    fn split(
-        &self,
-        of: &Self::Of,
-        view: &PendingView<'_, T, N, Dense>,
-        _prior: &SMatrix<T, N, N>,
-        _r: &SMatrix<T, M, M>,
-    ) -> Parts<T, M> {
-        let h = effective_jacobian(&of.s, &of.measured.cross);
-        view.split(h.as_ref(), &of.pzz)
-    }
+        // Borrowed, not moved: the sigma set and P are kilobytes.
+        let refaded;
+        let (prior, measured, pzz) = if fade == T::one() {
+            (&prior, &measured, &pzz)
+        } else {
+            let prior = self.cov.prior(fade);
+            let measured = sigma::measure(x, &factor(&prior)?, &w, model, space)?;
+            let pzz = measured.covariance(&w);
+            refaded = (prior, measured, pzz);
+            (&refaded.0, &refaded.1, &refaded.2)
+        };
+        // By reference: `done.step` holds them (checked finite here).
+        done.check_used()?;
+        let (r_used, nu_used) = (done.step.noise(), done.step.innovation());
+        let c = pzz + r_used;
+        let r_factor = done.noise_factor(Some(&r_factor));
+        // The view's factorisation of `C` is this `C`'s only when nothing
+        // faded (a fade recomputes `predicted` from the faded prior, which
+        // rounds differently from the view's update).
+        let mut fresh = None;
+        let (ldl, adapted_nis) = used_factorisation(done.step, fade, &c, &mut fresh)?;
+        let inputs = (prior, &measured.cross, pzz);
+        let noise = (r_used, r_factor, &c);
+        let correction = joseph_gain_on_ldl(self.cov.spare(), inputs, noise, ldl, nu_used)?;
+        let x_new = space.add(x, &correction);
+        ensure_finite(&x_new, Quantity::UpdatedState)?;
 
-    #[inline(always)]
-    fn nominal_view<'s>(
-        &self,
-        of: &'s Self::Of,
-        nominal: &'s Ldl<T, M>,
-    ) -> (&'s SMatrix<T, M, M>, FormFactor<'s, T, M>) {
-        (&of.pzz, FormFactor::Ldl(nominal))
-    }
-
-    #[inline(always)]
-    fn gain<A, S, O>(
-        &self,
-        of: &Self::Of,
-        prior: &SMatrix<T, N, N>,
-        spare: &mut SMatrix<T, N, N>,
-        x: &mut SVector<T, N>,
-        space: &S,
-        done: AdaptedStep<'_, '_, T, M, A::Report>,
-        fades: (SVector<T, M>, T, T),
-        noise_factor: &SMatrix<T, M, M>,
-        adapter: &mut A,
-    ) -> Result<O, FilterError>
-    where
-        A: NoiseAdapter<T, M>,
-        S: StateSpace<T, N>,
-        O: UpdateOutcome<T, M, A::Report>,
-    {
-        let moments = (prior, &of.measured.cross, &of.pzz);
-        dense_gain(moments, spare, x, space, done, fades, noise_factor, adapter)
+        *x = x_new;
+        let total_fade = self.cov.total_fade(fade);
+        self.cov.commit_spare();
+        adapter.after_update(
+            &Posterior::on_ldl(nu_used, pzz, r_used, ldl),
+            &mut done.adapters,
+        );
+        Ok(done.accepted(nu, &c, adapted_nis, total_fade))
     }
 }

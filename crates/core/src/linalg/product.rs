@@ -188,43 +188,6 @@ pub(crate) fn add_products<T, const R: usize, const C: usize, X, Y, const L: usi
     }
 }
 
-/// [`add_products`] out of line where it is tiled (more than
-/// `COLUMN_ROWS` rows): inlined into a long caller, the tile loop's
-/// accumulators compete for registers with the caller's own values and
-/// spill to the stack. Below that it is inlined.
-#[inline(always)]
-pub(crate) fn add_products_tiled_apart<T, const R: usize, const C: usize, X, Y, const L: usize>(
-    out: &mut SMatrix<T, R, C>,
-    init: Option<&SMatrix<T, R, C>>,
-    x: [&X; L],
-    y: [&Y; L],
-    lower: bool,
-) where
-    T: Real,
-    X: Columns<T, R> + ?Sized,
-    Y: Columns<T, C> + ?Sized,
-{
-    #[inline(never)]
-    fn apart<T, const R: usize, const C: usize, X, Y, const L: usize>(
-        out: &mut SMatrix<T, R, C>,
-        init: Option<&SMatrix<T, R, C>>,
-        x: [&X; L],
-        y: [&Y; L],
-        lower: bool,
-    ) where
-        T: Real,
-        X: Columns<T, R> + ?Sized,
-        Y: Columns<T, C> + ?Sized,
-    {
-        add_products(out, init, x, y, lower);
-    }
-    if const { R > COLUMN_ROWS } {
-        apart(out, init, x, y, lower);
-    } else {
-        add_products(out, init, x, y, lower);
-    }
-}
-
 /// One output column at a time, accumulated in a fixed-size array.
 #[inline(always)]
 fn columns<T, const R: usize, const C: usize, X, Y, const L: usize>(

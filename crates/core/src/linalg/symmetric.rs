@@ -1,6 +1,6 @@
 use nalgebra::{SMatrix, SVector};
 
-use super::product::{add_products, add_products_tiled_apart, add_scaled, mul_lower};
+use super::product::{add_products, add_scaled, mul_lower};
 use crate::Real;
 
 /// Copies the lower triangle of `p` onto its upper triangle, making `p`
@@ -229,7 +229,7 @@ pub(crate) fn joseph_factored_noise_negated<T: Real, const N: usize, const M: us
     let mut ne = SMatrix::zeros();
     add_products(&mut ne, Some(b), [nk], [a], false);
     let nkl = mul_lower(nk, l);
-    add_products_tiled_apart(out, Some(p), [&ne, nk, &nkl], [nk, b, &nkl], true);
+    add_products(out, Some(p), [&ne, nk, &nkl], [nk, b, &nkl], true);
     mirror_lower(out);
 }
 
