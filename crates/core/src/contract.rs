@@ -156,10 +156,9 @@ pub(crate) fn check_noise_cached<T: Real, const N: usize>(
 
 /// Whether `a` and `b` hold the same values, element for element, by `==`
 /// (NaN equals nothing, `−0` equals `0`), as the slice `==` decides.
-/// Without its early exit the comparison vectorises: no branch per element,
-/// and fewer instructions than the slice `==` at every size of the step
-/// benchmark (and far fewer than the matrix `==`, which walks a generic
-/// iterator).
+/// Without its early exit the comparison vectorises, with no branch per
+/// element, where the slice `==` tests each element in turn (and the matrix
+/// `==` walks a generic iterator).
 #[inline(always)]
 pub(crate) fn same_values<T: Real>(a: &[T], b: &[T]) -> bool {
     a.len() == b.len() && a.iter().zip(b).fold(true, |same, (x, y)| same & (x == y))

@@ -32,7 +32,7 @@ pub fn lit<T: Real>(value: f64) -> T {
 /// which equals nothing. Two float operations that stay in the vector
 /// registers, and over an array vectorise without a branch per element,
 /// where `is_finite` moves each value to an integer register to test its
-/// bits (benchmark notes, fourteenth round, also for where it is not used).
+/// bits.
 #[inline(always)]
 // `v − v` is the test, not a slip.
 #[allow(clippy::eq_op)]

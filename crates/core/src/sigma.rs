@@ -106,9 +106,9 @@ pub(crate) type Pairs<T, const D: usize, const N: usize> = [[SVector<T, D>; 2]; 
 /// the compiler sees, so it is one `memset`: an array of
 /// `SVector::zeros()` (made through an iterator) is filled by a `memcpy`
 /// call per pair, fifteen calls for the 15-state set. The smallest sets
-/// (at most four elements a vector times pairs) keep that form: with the
-/// `memset` the 2-state UKF step took 120 ns against 109 (criterion,
-/// benchmark notes, thirty-third round).
+/// (at most four elements a vector times pairs) keep that form: the
+/// compiler writes their zeros with a few stores, which cost less than a
+/// call to `memset`.
 #[inline(always)]
 fn zero_pairs<T: Real, const D: usize, const N: usize>() -> Pairs<T, D, N> {
     if const { D * N <= 4 } {
@@ -140,8 +140,7 @@ pub(crate) fn points<T: Real, const N: usize, S: StateSpace<T, N>>(
 /// `Wc₀ d₀ d₀ᵀ + W Σᵢ (d₊ᵢ d₊ᵢᵀ + d₋ᵢ d₋ᵢᵀ)`, one triangle, mirrored. The
 /// `2N` deviations are read in place as the columns of one product for the
 /// register-tiled kernel, `Σ dⱼ dⱼᵀ`, scaled by `W` after, rather than `2N`
-/// rank-one passes over the triangle (a quarter of the instructions at
-/// `N = 15`).
+/// rank-one passes, each of which loads and stores the whole triangle.
 fn weighted_covariance<T: Real, const D: usize, const N: usize>(
     center: &SVector<T, D>,
     pairs: &Pairs<T, D, N>,

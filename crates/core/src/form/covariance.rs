@@ -24,7 +24,7 @@ use crate::{
 /// When the filter has no adapter, `R` is diagonal, the measurement has at
 /// least four components and the state at most twelve, the update processes
 /// the measurement one component at a time (sequential scalar updates),
-/// which gives the same result as the batch update to rounding and was the
+/// which gives the same result as the batch update to rounding and is the
 /// faster of the two there; see [`SequentialUpdates`] for the measurements
 /// behind that choice and
 /// [`set_sequential_updates`](Self::set_sequential_updates) to change it.

@@ -62,8 +62,7 @@ impl<T: Real, const N: usize> DoubleBuffer<T, N> {
     /// The index is written whole. `current ^= 1` compiles to a one-byte
     /// store, which the next step's eight-byte load of the index cannot
     /// take from the store buffer: that load, and every access to the
-    /// buffers through it, would wait until the store reaches the cache
-    /// (benchmark notes, thirteenth round; four instructions more a step).
+    /// buffers through it, would wait until the store reaches the cache.
     pub fn swap(&mut self) {
         self.current = 1 - self.current;
     }

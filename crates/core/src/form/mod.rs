@@ -3,6 +3,10 @@
 //! process noise apart until the next update (or predict), so an adapter can
 //! fade the propagated part before `Q` is added.
 
+// Each form writes out the steps its update shares with the others (input
+// checks, the shortcut without adapters, the adapter round, the gain,
+// commit and report) rather than calling one driver for them: why, with
+// the measurements, is in docs/notes/forms-driver.md.
 mod checked_noise;
 mod covariance;
 mod double_buffer;

@@ -88,8 +88,9 @@ where
     let nis = ldl.quadratic_form(&innovation);
     let negated_k = negated_gain_on_ldl(&ldl, cross);
     // Written out, not through a helper shared with `joseph_gain_on_ldl`:
-    // through one the compiler inlined the Joseph update differently, and
-    // the KF step at 15 states took 31,211 instructions instead of 29,673.
+    // through one the compiler inlines the Joseph update differently, and
+    // at 15 states its tile loops spill their accumulators to the stack
+    // (docs/notes/forms-driver.md).
     let spare = cov.spare();
     joseph_with_gain(
         spare,
@@ -118,8 +119,8 @@ fn negated_gain_on_ldl<T: Real, const N: usize, const M: usize>(
 ) -> SMatrix<T, N, M> {
     // The same gain bit for bit either way. The right-hand solves work down
     // the columns of `K`, which vectorises when they are longer than its
-    // rows: 4 % of the `f32` step's instructions at 15 states; where
-    // `N = M` they cost more (benchmark notes, nineteenth round).
+    // rows; where `N = M` the solves down the rows of `Kᵀ` are the
+    // cheaper.
     if const { N > M } {
         let mut negated_k = SMatrix::from_fn(|i, j| -cross[(i, j)]);
         ldl.solve_right_in_place(&mut negated_k);
@@ -136,15 +137,14 @@ fn negated_gain_on_ldl<T: Real, const N: usize, const M: usize>(
 /// [`joseph_with_gain`]) for the cross covariance `B`, the predicted
 /// measurement covariance, the noise used (with its factor when known) and
 /// `C`. Returns the state correction `K ν` for the innovation used: the
-/// gain itself stays here (moved out by value it was copied twice a step,
-/// `N M` elements each; benchmark notes, nineteenth round). In an epoch the
-/// adapters left as they were, this is the arithmetic of the update
-/// without them on the same factorisation, so its result bit for bit.
+/// gain itself stays here (moved out by value, its `N M` elements would be
+/// copied twice a step). In an epoch the adapters left as they were, this
+/// is the arithmetic of the update without them on the same factorisation,
+/// so its result bit for bit.
 ///
 /// Not inlined: a second copy of the Joseph update in every adapted update
-/// would change how the compiler inlines the update without adapters (it
-/// took the KF step at 6 states from 6,596 to 7,008 instructions; benchmark
-/// notes, twenty-ninth round).
+/// would change how the compiler inlines the update without adapters, and
+/// make that update the slower.
 #[inline(never)]
 pub(crate) fn joseph_gain_on_ldl<T: Real, const N: usize, const M: usize>(
     covariance: &mut SMatrix<T, N, N>,
@@ -231,8 +231,7 @@ pub(crate) fn not_pd(index: usize) -> FilterError {
 /// the check that the nominal innovation covariance is positive definite,
 /// before any adapter runs, failing with the pivot index (that of
 /// [`cholesky`]). The view takes its NIS from it, and derives the Cholesky
-/// factor from it only if an adapter asks before replacing `R` (benchmark
-/// notes, eighteenth round).
+/// factor from it only if an adapter asks before replacing `R`.
 #[inline(always)]
 pub(crate) fn nominal_ldl<T: Real, const M: usize>(
     predicted: &SMatrix<T, M, M>,

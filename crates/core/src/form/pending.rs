@@ -187,9 +187,8 @@ pub(crate) struct PendingView<'a, T: Real, const N: usize> {
 impl<T: Real, const N: usize> PendingView<'_, T, N> {
     /// See [`PendingCovariance::prior`]. Always inlined: on the step's path
     /// `extra` is the constant 1 and the fade's branches fold away; left
-    /// to itself the compiler kept it out of line in builds where the
-    /// adapter path calls it too (13 more instructions in the two-state
-    /// step).
+    /// to itself the compiler keeps it out of line in builds where the
+    /// adapter path calls it too.
     #[inline(always)]
     pub fn prior(&self, extra: T) -> SMatrix<T, N, N> {
         if self.pending {

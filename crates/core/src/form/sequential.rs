@@ -31,10 +31,9 @@ pub(crate) fn update<T: Real, const N: usize, const M: usize>(
     r: &SMatrix<T, M, M>,
     nu: &SVector<T, M>,
 ) -> Result<Sequential<T, N, M>, FilterError> {
-    // The caller's frame keeps its slot for the result: making the update
-    // work in the caller's spare buffer instead moved the dense update's
-    // stack slots and slowed it by a fifth to a third at 32 states, with
-    // the same instructions (benchmark notes, twenty-fourth round).
+    // The caller's frame keeps its slot for the result: working in the
+    // caller's spare buffer instead moves the dense update's stack slots,
+    // which slows it at large sizes with the same instructions.
     let mut p = *prior;
     let mut dx = SVector::<T, N>::zeros();
     let mut gains = [SVector::<T, N>::zeros(); M];
@@ -100,9 +99,8 @@ fn innovation_covariance<T: Real, const N: usize, const M: usize>(
 /// column is updated from the first row of the block of four that holds
 /// its diagonal, so that the loop starts on whole vector registers; the
 /// few elements above the diagonal this writes are overwritten by the
-/// mirror. (Whole columns, a loop of fixed length, took more instructions
-/// at 9 and 12 states and from 18 on, fewer only at 15: benchmark notes,
-/// twenty-fourth round.)
+/// mirror. (Whole columns, a loop of fixed length, would also compute the
+/// blocks above the diagonal's.)
 #[inline(always)]
 fn joseph_scalar<T: Real, const N: usize>(
     p: &mut SMatrix<T, N, N>,

@@ -10,18 +10,11 @@
 ///
 /// The default, [`BySize`](Self::BySize), takes measurements of at least
 /// [`MIN_COMPONENTS`](Self::MIN_COMPONENTS) components one at a time in
-/// filters of at most [`MAX_STATES`](Self::MAX_STATES) states. Timed on the
-/// project's benchmark machine (the twenty-fifth round of
-/// `docs/benchmarks.md`, default `x86-64` target):
-///
-/// - in `f64` the sequential update took 3–30 % less time than the batch one
-///   with four to six components at 4 to 12 states, and 9–42 % more with
-///   one to three components at 2 to 4 states; from 15 states on neither was
-///   consistently faster;
-/// - in `f32` the batch update was as fast or faster almost everywhere: the
-///   sequential one was faster only at 6 and 9 states with six components
-///   (by 4–21 %), and 10–22 % slower with four to six components from 15
-///   states on.
+/// filters of at most [`MAX_STATES`](Self::MAX_STATES) states: the sizes at
+/// which the sequential update is the faster of the two in `f64`. With
+/// fewer components the batch update is the faster, from 15 states on
+/// neither is consistently, and in `f32` the batch update is as fast or
+/// faster almost everywhere. The timings are in `docs/benchmarks.md`.
 ///
 /// ```
 /// use kestrel_core::form::SequentialUpdates;

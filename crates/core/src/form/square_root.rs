@@ -174,8 +174,8 @@ impl<T: Real, const N: usize> SquareRootForm<T, N> {
             TimeUpdate::Householder => {
                 // Gathered by rows, scaled on the way (see
                 // `add_columns_by_rows`), through plain slices (nalgebra's
-                // element iterators are strided and general: they took a
-                // tenth of the step at N = 15).
+                // element iterators are strided and general, an index
+                // computation per element).
                 let mut rows = [[[T::zero(); N]; 2]; D];
                 for (i, [plus, minus]) in pairs.iter().enumerate() {
                     let columns = plus.as_slice().iter().zip(minus.as_slice());

@@ -126,9 +126,8 @@ fn semidefinite_by<T: Real, const N: usize>(
 /// `max` passes it over, and left to the pivot tests), in four running
 /// maxima over every fourth diagonal element: one maximum after another is
 /// a chain of `N` dependent operations that the factorisation's first
-/// pivot waits on (2–3 % of the unscented step at 15 states; benchmark
-/// notes, thirty-fourth round). The maximum of a set does not depend on
-/// the order it is taken in, so the result is that of the plain fold.
+/// pivot waits on. The maximum of a set does not depend on the order it
+/// is taken in, so the result is that of the plain fold.
 #[inline(always)]
 fn largest_diagonal_magnitude<T: Real, const N: usize>(a: &SMatrix<T, N, N>) -> T {
     let mut lanes = [T::zero(); 4];
@@ -182,8 +181,8 @@ pub(super) fn regular_pivot<T: Real>(d: T, original: T, rel: T) -> bool {
 /// The rows are taken in blocks of four counted from the last row (the
 /// first `N mod 4` rows form a short head), so each pass over a column is
 /// whole four-lane blocks with no scalar remainder; a loop from row `j`
-/// on was scalar for most of its rows at 15 states (in `f32` it took no
-/// vector path below eight rows). The block holding row `j` may begin up
+/// on is scalar for most of its rows (in `f32` it takes no vector path
+/// below eight rows). The block holding row `j` may begin up
 /// to three rows above it, in the strict upper part, which holds the
 /// input until it is set to zero at the end of the column and is read by
 /// nothing before; the finished columns read there are zero above their
@@ -210,7 +209,7 @@ fn factor<T: Real, const N: usize>(
         // each element still takes its subtractions one at a time in
         // column order (the same rounding), with a quarter of the loop
         // overhead and stores. (Below, the larger code costs more than the
-        // short loops save: measured at 2 and 6.)
+        // short loops save.)
         let mut k = 0;
         while N >= UNROLL_FROM && k + 4 <= j {
             // Scalars, not an array: four 8-byte stores read back as vectors
@@ -273,9 +272,7 @@ fn factor<T: Real, const N: usize>(
 /// read it in, each block stored whole: a loop from row `j + 1` stores
 /// where the blocks do not begin, and the next column's loads of the
 /// blocks then cannot take their data from those stores but wait for them
-/// to reach the cache (the unscented step, which factors two 15-state
-/// covariances, 8 % faster in `f32` and 3 % in `f64`; benchmark notes,
-/// thirty-fourth round).
+/// to reach the cache.
 #[inline(always)]
 fn finish_column<T: Real, const N: usize>(
     col: &mut [T; N],

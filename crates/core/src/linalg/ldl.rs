@@ -204,8 +204,8 @@ impl<T: Real, const M: usize> Ldl<T, M> {
         let ls = self.l.as_slice();
         for c in 0..K {
             let col = &mut b.as_mut_slice()[c * M..c * M + M];
-            // Not unrolled: unrolled, the six-state KF step took 188 more
-            // instructions.
+            // Not unrolled: at a measurement's sizes the unrolled solve is
+            // more code than the loop overhead it saves.
             self.forward(col, false);
             for (v, inv) in col.iter_mut().zip(&self.inv_d) {
                 *v *= *inv;
@@ -224,8 +224,8 @@ impl<T: Real, const M: usize> Ldl<T, M> {
     /// factor [`cholesky`](super::cholesky) gives, to rounding, for the
     /// price of `M` divisions and square roots side by side (none on a
     /// chain) and one product per element. (`dₖ` is not kept: the update
-    /// without adapters, where every instruction of the two-state step
-    /// shows, never asks for this.)
+    /// without adapters never asks for this, and would pay for keeping it
+    /// on every pivot.)
     pub fn cholesky_factor(&self) -> SMatrix<T, M, M> {
         let root: [T; M] = core::array::from_fn(|k| self.inv_d[k].recip().sqrt());
         SMatrix::from_fn(|i, j| {

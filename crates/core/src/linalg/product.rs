@@ -32,9 +32,8 @@ pub(super) const fn lanes<T>() -> usize {
 /// column is whole registers either way. Eight `f32` rows on SSE2 rather
 /// than four share each broadcast element of the right-hand factor between
 /// two multiplies, and a broadcast is a shuffle on the same port as half
-/// the additions: the `f32` KF step at 15 states 6 % faster, the `f32` UKF
-/// step 1 % (benchmark notes, thirty-fourth round); in `f64` eight rows
-/// (four SSE2 registers) made both steps 7–13 % slower.
+/// the additions. In `f64` eight rows are four SSE2 registers a column, and
+/// a tile's accumulators alone would take all sixteen.
 const fn tile_rows<T>() -> usize {
     if core::mem::size_of::<T>() <= 4 {
         8
@@ -53,10 +52,9 @@ const COLUMN_ROWS: usize = 12;
 ///
 /// nalgebra's general product loads and stores the result once per column;
 /// for the small sizes of a filter model (a 15-state transition applied to
-/// 31 sigma points) keeping it in registers takes a twentieth off the
-/// unscented step's time (measured in `docs/benchmarks.md`). Always inlined:
-/// left to itself the compiler kept it out of line in some builds, called
-/// once per sigma point, which cost the unscented step a tenth of its time.
+/// 31 sigma points) this keeps it in registers instead. Always inlined:
+/// left to itself the compiler keeps it out of line in some builds, a call
+/// per sigma point.
 ///
 /// ```
 /// use kestrel_core::linalg::mul_vector;
@@ -71,7 +69,7 @@ pub fn mul_vector<T: Real, const R: usize, const C: usize>(
     x: &SVector<T, C>,
 ) -> SVector<T, R> {
     // Written out, not as the one-column case of `add_products`: that
-    // needs `xᵀ` copied and cost the 2-state KF step 3 % (measured).
+    // needs `xᵀ` copied.
     let mut acc = [T::zero(); R];
     for (column, &f) in a.data.0.iter().zip(x.as_slice()) {
         add_scaled(&mut acc, column, f);
@@ -164,19 +162,17 @@ pub(crate) fn add_products<T, const R: usize, const C: usize, X, Y, const L: usi
 {
     // The size tests here and below are `const` blocks: the compiler then
     // instantiates only the branch taken, where a plain condition on the
-    // same constants instantiates every kernel of every branch (4,400 tile
-    // functions against 192 in the umbrella crate's test suite; figures in
-    // docs/verification.md, "CI").
+    // same constants instantiates every kernel of every branch, and a build
+    // compiles all of them for the one it runs.
     //
     // Tiled, the rows left over are covered, in `f32` and in `f64` with
     // AVX, by one more full-height tile ending at the last row, overlapping
     // the tile before it. The rows in common are computed twice with the
     // same operations in the same order, so they are written twice with the
     // same value; a 15-row `f32` column then takes four vector operations
-    // rather than three and three scalar ones (measured with four-row
-    // tiles: the `f32` KF step at 15 states 6 % faster). With two registers
-    // to a four-row tile's column (`f64` on SSE2) edge tiles of the rows'
-    // own size are as cheap.
+    // rather than three and three scalar ones. With two registers to a
+    // four-row tile's column (`f64` on SSE2) edge tiles of the rows' own
+    // size are as cheap.
     if const { R <= COLUMN_ROWS || C < NR } {
         columns(out, init, x, y);
     } else if const { tile_rows::<T>() == 8 } {
@@ -323,9 +319,8 @@ fn tile<T, const R: usize, const C: usize, X, Y, const L: usize, const TR: usize
         for k in 0..xt.count().min(yt.count()) {
             // Fixed-size, so the tile loops unroll into registers; copied
             // out before the multiply-adds rather than read through the
-            // slices (measured: 3 % fewer instructions for the KF step at
-            // 15 and 32 states, 3-7 % less time from 15 states on; benchmark
-            // notes, twenty-seventh round).
+            // slices, so that each element is loaded once, into a
+            // register, for all the multiply-adds that use it.
             let (Some(&xk), Some(&yk)) = (
                 xt.column(k)[ib..].first_chunk::<TR>(),
                 yt.column(k)[jb..].first_chunk::<TC>(),

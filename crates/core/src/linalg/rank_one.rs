@@ -220,9 +220,8 @@ fn downdate_pivot<T: Real, const N: usize>(col: &mut [T; N], v: &mut [T; N], k: 
     // Blocks of four rows where a vector register holds four or more
     // (`f32`; `f64` with AVX), else of two (`f64` on SSE2) up to 16 states:
     // whole registers below the pivot, and few rows computed above it.
-    // From 18 states the longer columns make four rows a block the cheaper
-    // in `f64` too (instruction counts at 4 to 32 states, benchmark notes,
-    // thirtieth round).
+    // From 18 states the columns are long enough that four rows a block
+    // are the cheaper in `f64` too.
     if const { lanes::<T>() >= 4 || N > 16 } {
         rows_in_blocks::<T, N, 4>(col, v, k, (c, sn, inv_c));
     } else {

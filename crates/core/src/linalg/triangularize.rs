@@ -90,11 +90,9 @@ pub(crate) fn add_columns_by_rows<T: Real, const D: usize, const N: usize>(
 }
 
 /// The state size from which [`add_columns_by_rows`] applies its
-/// reflections in pairs, as measured (the twenty-eighth round in
-/// `docs/benchmarks.md`): in pairs the square-root step is faster from 6
-/// states on (6 % at 15 states), and slower at 2 and 4 states, where the
+/// reflections in pairs, which read each row half as often: below it the
 /// loop of one reflection at a time is unrolled whole and the pairs' loop
-/// is not.
+/// is not, and the unrolled loop is the cheaper.
 const PAIRS_FROM: usize = 6;
 
 /// [`add_columns_by_rows`] one reflection at a time.
@@ -458,12 +456,11 @@ fn dot<T: Real>(a: &[T], b: &[T]) -> T {
 ///
 /// From two blocks on, the lanes pass through [`black_box`] first. Without
 /// it, LLVM's SLP vectoriser plans the lanes' registers from this final
-/// sum backwards, and for the `(l₀ + l₁) + (l₂ + l₃)` order formerly used
-/// it regrouped every product vector by shuffles into the pairs that sum,
-/// in `f32` and in `f64`: at 15 states this fold took 28,386 instructions
-/// a step in `f64` and 21,392 in `f32`, against 23,231 and 15,301 with the
-/// barrier. Seen as an opaque value, the lanes stay one register of four
-/// `f32` or two of two `f64`, and this order sums their halves first.
+/// sum backwards, and can regroup every product vector by shuffles into
+/// the pairs that sum (it does for the order `(l₀ + l₁) + (l₂ + l₃)`, in
+/// `f32` and in `f64`). Seen as an opaque value, the lanes stay one
+/// register of four `f32` or two of two `f64`, and this order sums their
+/// halves first.
 /// With one block there is nothing to regroup, and the store and load the
 /// barrier costs are left out (the lengths are constants, so the test is
 /// too).

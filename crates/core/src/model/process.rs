@@ -32,10 +32,9 @@ pub trait ProcessModel<T: Real, const N: usize> {
     ///
     /// The unscented forms call it once per sigma point, `2N + 1` times a
     /// step. A small model is fastest inlined there, which the compiler does
-    /// not always choose: the library's linear models and
-    /// [`mul_vector`](crate::linalg::mul_vector) are `#[inline(always)]`,
-    /// because without it one build of the step benchmark lost a tenth of the
-    /// UKF's step at 15 states (benchmark notes, thirty-second round).
+    /// not always choose on its own: the library's linear models and
+    /// [`mul_vector`](crate::linalg::mul_vector) are `#[inline(always)]`, so
+    /// that no build calls them out of line once per sigma point.
     fn propagate(&self, x: &SVector<T, N>, dt: T) -> SVector<T, N>;
 
     /// The discrete process noise covariance added over `dt` seconds, in state
