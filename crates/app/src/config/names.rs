@@ -7,7 +7,7 @@ use serde::Deserialize;
 use crate::scenario::ErrorModelKind;
 
 /// The Earth ellipsoids a file can name (`earth = "…"`).
-#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, Deserialize, serde::Serialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum EarthName {
     /// WGS-84 (GPS).
@@ -54,7 +54,7 @@ impl EarthName {
 /// The error-state models a file can name (`error_model = "…"`); the
 /// correlation time of the 21- and 16-state models' scale factors is a key
 /// of its own.
-#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, Deserialize, serde::Serialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum ErrorModelName {
     /// 15 states.

@@ -130,3 +130,52 @@ fn best<'a>(units: &[&'a Unit], si: &[f64]) -> (&'a Unit, Vec<f64>) {
         ),
     }
 }
+
+/// `value` (a configuration file's tables) as TOML with `header` as the
+/// file's leading comment lines and `comments` beside the keys they name
+/// (dotted key paths, e.g. `imu.gyro_arw`). The text is the TOML library's
+/// serialization, so every string is escaped and every number reads back
+/// to the same bits.
+///
+/// # Errors
+/// A message if `value` has no TOML form.
+pub(crate) fn commented_toml<T: serde::Serialize>(
+    value: &T,
+    header: &[String],
+    comments: &[(String, String)],
+) -> Result<String, String> {
+    let mut doc = toml_edit::ser::to_document(value).map_err(|e| e.to_string())?;
+    as_tables(doc.as_table_mut());
+    for (path, comment) in comments {
+        let mut parts: Vec<&str> = path.split('.').collect();
+        let Some(leaf) = parts.pop() else { continue };
+        let table = parts.iter().try_fold(doc.as_table_mut(), |t, p| {
+            t.get_mut(p).and_then(|i| i.as_table_mut())
+        });
+        match table.and_then(|t| t.get_mut(leaf)) {
+            Some(toml_edit::Item::Value(v)) => {
+                v.decor_mut().set_suffix(format!(" # {comment}"));
+            }
+            Some(toml_edit::Item::Table(t)) => {
+                let lines: String = comment.lines().map(|l| format!("# {l}\n")).collect();
+                t.decor_mut().set_prefix(format!("\n{lines}"));
+            }
+            _ => {}
+        }
+    }
+    let head: String = header.iter().map(|l| format!("# {l}\n")).collect();
+    Ok(format!("{head}{doc}"))
+}
+
+/// Every inline table under `table` as a `[table]` of its own (the
+/// serializer writes inline tables; a file a person reads has headers).
+fn as_tables(table: &mut toml_edit::Table) {
+    for (_, item) in table.iter_mut() {
+        if let Some(inline) = item.as_inline_table() {
+            *item = toml_edit::Item::Table(inline.clone().into_table());
+        }
+        if let Some(t) = item.as_table_mut() {
+            as_tables(t);
+        }
+    }
+}

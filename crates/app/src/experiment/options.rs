@@ -7,7 +7,7 @@
 /// let o = RunOptions { axes: Some(PositionAxes::NorthEastDown), ..Default::default() };
 /// assert_eq!(o.axes, Some(PositionAxes::NorthEastDown));
 /// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
 pub enum PositionAxes {
     /// North, east, down (m); `ned` in files.
     #[default]

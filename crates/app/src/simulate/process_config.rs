@@ -1,41 +1,45 @@
-//! The `kestrel process` configuration matching a scenario's filter set-up.
+//! The `kestrel process` configuration matching a scenario's filter set-up,
+//! filled in as the configuration file's own types and written by the TOML
+//! library.
 
-use std::fmt::Write;
-
-use crate::experiment::PositionAxes;
-use crate::scenario::{ErrorModelKind, FilterKind, Scenario};
 use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::NavState;
 
-use crate::config::names::EarthName;
-use crate::config::units::{DEG_PER_H, DEG_PER_SQRT_H, M_S_PER_SQRT_H, UG};
-use kestrel_io::gins::{degrees_exact, invert_exact};
+use crate::config::filter::Keys;
+use crate::config::names::{EarthName, ErrorModelName};
+use crate::config::process::schema::{
+    Exact, File, Filter, Gnss, GnssNoiseSource, Imu, Initial, InitialStd, Odometer, Output, V3,
+};
+use crate::config::units::{Unit, DEG_PER_H, DEG_PER_SQRT_H, M_S_PER_SQRT_H, PPM, UG};
+use crate::config::write::commented_toml;
+use crate::experiment::PositionAxes;
+use crate::scenario::{ErrorModelKind, FilterKind, FilterSetup, InitialUncertainty, Scenario};
+use kestrel_io::gins::degrees_exact;
 
-/// `x` in a unit whose conversion to SI is `to_si` (by the factor `per`),
-/// chosen so that the conversion gives back exactly `x` where possible.
-fn inv(x: f64, per: f64, to_si: fn(f64) -> f64) -> f64 {
-    invert_exact(x, x / per, to_si)
+/// `v` (SI) in `unit`, each value the one that converts back exactly.
+fn v3(v: &Vector3<f64>, unit: &Unit) -> V3 {
+    Exact([unit.exact(v.x), unit.exact(v.y), unit.exact(v.z)])
 }
 
-/// A TOML float (`{:?}` keeps a decimal point and round-trips).
-fn f(x: f64) -> String {
-    format!("{x:?}")
-}
-
-fn v3(v: &Vector3<f64>, each: impl Fn(f64) -> f64) -> String {
-    format!("[{}, {}, {}]", f(each(v.x)), f(each(v.y)), f(each(v.z)))
-}
-
-/// The `[filter]` lines of `kind` (`None` if `process` does not run it).
-fn filter_lines(kind: &FilterKind) -> Option<String> {
-    if kind.is_federated() {
-        return None;
-    }
-    let mut lines = format!("kind = \"{}\"\n", kind.name());
+/// The `[filter]` keys of `kind` (the standard EKF's if `process` does not
+/// run it).
+fn kind_keys(kind: &FilterKind) -> Keys {
+    let kind = if kind.is_federated() {
+        &FilterKind::Standard
+    } else {
+        kind
+    };
+    let mut keys = Keys::new();
+    keys.insert("kind".into(), toml::Value::String(kind.name().into()));
     for p in kind.params() {
-        let _ = writeln!(lines, "{} = {}", p.key, p.value);
+        let value = match p.value {
+            crate::scenario::ParamValue::Number(x) => toml::Value::Float(x),
+            crate::scenario::ParamValue::Window(w) => toml::Value::Integer(w as i64),
+            crate::scenario::ParamValue::Fade(b) => toml::Value::String(b.name().into()),
+        };
+        keys.insert(p.key.into(), value);
     }
-    Some(lines)
+    keys
 }
 
 /// The configuration text for `scenario` starting from `start` (the
@@ -56,151 +60,137 @@ fn filter_lines(kind: &FilterKind) -> Option<String> {
 /// assert_eq!(set.start.pos, s.initial_state(&truth).pos);
 /// ```
 pub fn process_config(scenario: &Scenario, start: &NavState, kind: &FilterKind) -> String {
-    let sc = scenario;
-    let fs = &sc.filter;
-    let mut t = String::new();
-    let w = &mut t;
-    let _ = writeln!(
-        w,
-        "# `kestrel process` configuration for scenario {}:",
-        sc.name
-    );
-    let _ = writeln!(w, "# {}", sc.description);
-    let _ = writeln!(
-        w,
-        "# Every key is explained in crates/app/configs/process-example.toml."
-    );
-    let _ = writeln!(
-        w,
-        "earth = \"{}\"\n",
-        EarthName::of(&sc.earth).unwrap_or_default().name()
-    );
-
-    let e = start.euler();
-    let _ = writeln!(w, "[initial]\nweek = 0\ntime = {}", f(start.time));
-    let _ = writeln!(
-        w,
-        "position = [{}, {}, {}]",
-        f(degrees_exact(start.pos.lat)),
-        f(degrees_exact(start.pos.lon)),
-        f(start.pos.h)
-    );
-    let _ = writeln!(w, "velocity = {}", v3(&start.vel, |x| x));
-    let _ = writeln!(
-        w,
-        "attitude = {}\n",
-        v3(&Vector3::new(e.roll, e.pitch, e.yaw), degrees_exact)
-    );
-    let p = &fs.p0;
-    let dph = |x| inv(x, DEG_PER_H.si(1.0), DEG_PER_H.to_si);
-    let _ = writeln!(w, "[initial.std]");
-    let _ = writeln!(w, "attitude = {}", v3(&p.attitude, degrees_exact));
-    let _ = writeln!(w, "velocity = {}", v3(&p.velocity, |x| x));
-    let _ = writeln!(w, "position = {}", v3(&p.position, |x| x));
-    let _ = writeln!(w, "gyro_bias = {}", v3(&p.gyro_bias, dph));
-    let _ = writeln!(w, "gyro_markov = {}", v3(&p.gyro_markov, dph));
-    let _ = writeln!(
-        w,
-        "accel_bias = {}",
-        v3(&p.accel_bias, |x| inv(x, UG.si(1.0), UG.to_si))
-    );
-    let _ = writeln!(w, "odometer_scale = {}", f(p.odometer_scale));
-    if let ErrorModelKind::Ins21 { .. } = fs.error_model {
-        let _ = writeln!(w, "gyro_scale = {}", v3(&p.gyro_scale, |x| x * 1e6));
-        let _ = writeln!(w, "accel_scale = {}", v3(&p.accel_scale, |x| x * 1e6));
+    let fs = &scenario.filter;
+    let file = File {
+        earth: EarthName::of(&scenario.earth).unwrap_or_default(),
+        initial: initial(start, &fs.p0, fs),
+        imu: imu(fs),
+        filter: Filter {
+            error_model: ErrorModelName::of(&fs.error_model),
+            covariance_interval: Some(0.1),
+            lever_arm: v3(&fs.lever_arm, &crate::config::units::SI),
+            kind: kind_keys(kind),
+        },
+        gnss: gnss(fs),
+        odometer: odometer(scenario),
+        nhc: None,
+        zupt: None,
+        alignment: None,
+        output: Output {
+            interval: Some(0.0),
+            position_axes: PositionAxes::for_scenario(&scenario.name),
+        },
+        imu_file: None,
+        gnss_file: None,
+        truth_file: None,
+    };
+    let mut header = vec![
+        format!(
+            "`kestrel process` configuration for scenario {}:",
+            scenario.name
+        ),
+        scenario.description.clone(),
+        "Every key is explained in crates/app/configs/process-example.toml.".to_string(),
+    ];
+    if kind.is_federated() {
+        header.push(format!(
+            "`process` does not run the {}; the standard EKF instead.",
+            kind.label()
+        ));
     }
-    let _ = writeln!(w);
+    commented_toml(&file, &header, &[]).unwrap_or_else(|e| format!("# cannot write: {e}\n"))
+}
 
+/// `[initial]` and `[initial.std]`: the start and P0.
+fn initial(start: &NavState, p: &InitialUncertainty, fs: &FilterSetup) -> Initial {
+    let e = start.euler();
+    let ins21 = matches!(fs.error_model, ErrorModelKind::Ins21 { .. });
+    Initial {
+        week: 0,
+        time: start.time,
+        position: Some(Exact([
+            degrees_exact(start.pos.lat),
+            degrees_exact(start.pos.lon),
+            start.pos.h,
+        ])),
+        velocity: Some(Exact(start.vel.into())),
+        attitude: Some(Exact([e.roll, e.pitch, e.yaw].map(degrees_exact))),
+        gyro_bias: None,
+        accel_bias: None,
+        gyro_scale: None,
+        accel_scale: None,
+        std: InitialStd {
+            attitude: Exact([p.attitude.x, p.attitude.y, p.attitude.z].map(degrees_exact)),
+            velocity: Exact(p.velocity.into()),
+            position: Exact(p.position.into()),
+            gyro_bias: v3(&p.gyro_bias, &DEG_PER_H),
+            gyro_markov: v3(&p.gyro_markov, &DEG_PER_H),
+            accel_bias: v3(&p.accel_bias, &UG),
+            odometer_scale: p.odometer_scale,
+            gyro_scale: if ins21 {
+                v3(&p.gyro_scale, &PPM)
+            } else {
+                Exact::default()
+            },
+            accel_scale: if ins21 {
+                v3(&p.accel_scale, &PPM)
+            } else {
+                Exact::default()
+            },
+        },
+    }
+}
+
+/// `[imu]`: the filter's noise model (the turn-on biases are P0; scale
+/// factors are states of `ins21` only).
+fn imu(fs: &FilterSetup) -> Imu {
     let m = &fs.imu_model;
-    let _ = writeln!(w, "[imu]");
-    let _ = writeln!(
-        w,
-        "gyro_arw = {}",
-        f(inv(
-            m.gyro_arw,
-            DEG_PER_SQRT_H.si(1.0),
-            DEG_PER_SQRT_H.to_si
-        ))
-    );
-    let _ = writeln!(
-        w,
-        "accel_vrw = {}",
-        f(inv(
-            m.accel_vrw,
-            M_S_PER_SQRT_H.si(1.0),
-            M_S_PER_SQRT_H.to_si
-        ))
-    );
-    let _ = writeln!(w, "gyro_markov_sigma = {}", f(dph(m.gyro_markov_sigma)));
-    let _ = writeln!(w, "gyro_markov_tau = {}", f(m.gyro_markov_tau));
-    let _ = writeln!(
-        w,
-        "accel_markov_sigma = {}",
-        f(inv(m.accel_markov_sigma, UG.si(1.0), UG.to_si))
-    );
-    let _ = writeln!(w, "accel_markov_tau = {}", f(m.accel_markov_tau));
+    let mut imu = Imu {
+        gyro_arw: Some(DEG_PER_SQRT_H.exact(m.gyro_arw)),
+        accel_vrw: Some(M_S_PER_SQRT_H.exact(m.accel_vrw)),
+        gyro_markov_sigma: DEG_PER_H.exact(m.gyro_markov_sigma),
+        gyro_markov_tau: Some(m.gyro_markov_tau),
+        accel_markov_sigma: UG.exact(m.accel_markov_sigma),
+        accel_markov_tau: Some(m.accel_markov_tau),
+        ..Imu::default()
+    };
     if let ErrorModelKind::Ins21 { scale_tau } = fs.error_model
         && scale_tau.is_finite()
     {
-        let _ = writeln!(w, "scale_tau = {}", f(scale_tau));
-        let _ = writeln!(w, "gyro_scale_sigma = {}", f(m.gyro_scale * 1e6));
-        let _ = writeln!(w, "accel_scale_sigma = {}", f(m.accel_scale * 1e6));
+        imu.scale_tau = Some(scale_tau);
+        imu.gyro_scale_sigma = Some(PPM.exact(m.gyro_scale));
+        imu.accel_scale_sigma = Some(PPM.exact(m.accel_scale));
     }
-    let _ = writeln!(w);
+    imu
+}
 
-    let _ = writeln!(w, "[filter]");
-    let lines = filter_lines(kind).unwrap_or_else(|| {
-        format!(
-            "# `process` does not run the {}; the standard EKF instead.\nkind = \"ekf\"\n",
-            kind.label()
-        )
-    });
-    let _ = write!(w, "{lines}");
-    let model = match fs.error_model {
-        ErrorModelKind::Ins15 => "ins15",
-        ErrorModelKind::Ins18 => "ins18",
-        ErrorModelKind::Ins21 { .. } => "ins21",
-        ErrorModelKind::Odometer16 { .. } => "odometer16",
-    };
-    let _ = writeln!(w, "error_model = \"{model}\"\ncovariance_interval = 0.1");
-    let _ = writeln!(w, "lever_arm = {}\n", v3(&fs.lever_arm, |x| x));
-
-    let _ = writeln!(w, "[gnss]");
+/// `[gnss]`: the scenario's R, or each fix's σ without one.
+fn gnss(fs: &FilterSetup) -> Gnss {
     match (fs.r.position, fs.r.velocity) {
-        (Some(pos), Some(vel)) => {
-            let _ = writeln!(w, "noise = \"fixed\"");
-            let _ = writeln!(w, "position_std = {}", v3(&pos, |x| x));
-            let _ = writeln!(w, "velocity_std = {}\n", v3(&vel, |x| x));
-        }
-        _ => {
-            let _ = writeln!(w, "noise = \"file\"\n");
-        }
+        (Some(pos), Some(vel)) => Gnss {
+            noise: GnssNoiseSource::Fixed,
+            position_std: Some(Exact(pos.into())),
+            velocity_std: Some(Exact(vel.into())),
+        },
+        _ => Gnss::default(),
     }
+}
 
-    if let (Some(o), Some(r), ErrorModelKind::Odometer16 { scale_tau }) =
+/// `[odometer]` of the 16-state model.
+fn odometer(sc: &Scenario) -> Option<Odometer> {
+    let fs = &sc.filter;
+    let (Some(o), Some(r), ErrorModelKind::Odometer16 { scale_tau }) =
         (&sc.odometer, fs.r.odometer, fs.error_model)
-    {
-        let [pitch, yaw] = fs.odometer_mounting;
-        let _ = writeln!(w, "[odometer]\nrate = {}", f(o.rate));
-        let _ = writeln!(w, "speed_std = {}\nnhc_std = {}", f(r.x), f(r.y));
-        let _ = writeln!(
-            w,
-            "mounting = [{}, {}]",
-            f(degrees_exact(pitch)),
-            f(degrees_exact(yaw))
-        );
-        let _ = writeln!(
-            w,
-            "scale_tau = {}\nscale_sigma = {}\n",
-            f(scale_tau),
-            f(o.scale_markov_sigma)
-        );
-    }
-
-    let axes = match PositionAxes::for_scenario(&sc.name) {
-        PositionAxes::EastNorthUp => "enu",
-        PositionAxes::NorthEastDown => "ned",
+    else {
+        return None;
     };
-    let _ = writeln!(w, "[output]\ninterval = 0.0\nposition_axes = \"{axes}\"");
-    t
+    Some(Odometer {
+        rate: o.rate,
+        speed_std: r.x,
+        nhc_std: r.y,
+        mounting: Exact(fs.odometer_mounting.map(degrees_exact)),
+        lever_arm: Exact::default(),
+        scale_tau,
+        scale_sigma: o.scale_markov_sigma,
+    })
 }

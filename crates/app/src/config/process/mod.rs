@@ -41,17 +41,53 @@ use std::f64::consts::PI;
 
 mod check;
 mod files;
-mod schema;
+pub(crate) mod schema;
 mod sensors;
 mod settings;
 
 use check::Check;
 use schema::File;
-pub use schema::{GnssFormat, TruthFormat, TruthSettings};
 
 /// Where the GNSS `R` comes from: `Reported` is `noise = "file"` (the σ
 /// each line of the GNSS file reports).
 pub use crate::experiment::GnssNoise;
+
+/// The reference's format.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum TruthFormat {
+    /// The navigation format (position, velocity, attitude).
+    #[default]
+    Nav,
+    /// RTKLIB `.pos` of a better receiver: position only.
+    Rtklib {
+        /// The accepted `Q` flags.
+        quality: Vec<u8>,
+    },
+}
+
+/// How the reference is read and compared.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct TruthSettings {
+    /// Its format.
+    pub format: TruthFormat,
+    /// Whether its positions are the GNSS antenna's (else the IMU's): the
+    /// solution is then moved by the lever arm before comparing.
+    pub at_antenna: bool,
+}
+
+/// The GNSS file's format.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum GnssFormat {
+    /// The GINS text format (7 or 13 columns).
+    #[default]
+    Gins,
+    /// RTKLIB `.pos`, keeping the fixes whose quality flag `Q` is listed.
+    Rtklib {
+        /// The accepted `Q` values (1 fix, 2 float, 3 SBAS, 4 DGPS, 5 single,
+        /// 6 PPP).
+        quality: Vec<u8>,
+    },
+}
 
 /// Odometer aiding (the IMU file's 8th column).
 #[derive(Clone, Copy, Debug, PartialEq)]

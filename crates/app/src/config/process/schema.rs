@@ -1,15 +1,18 @@
 //! The file as written: the tables and keys `process` reads, each table
-//! refusing keys it does not know.
+//! refusing keys it does not know. The same types are what the writers of
+//! `process` configurations fill in (`simulate`, the importers), so a
+//! written file has exactly the keys a read file may have.
 
 use super::*;
 use crate::config::names::{EarthName, ErrorModelName};
+use serde::Serialize;
 
-pub(super) type V3 = Exact<3>;
+pub(crate) type V3 = Exact<3>;
 
 /// An array of exactly `N` numbers: a longer or shorter one is an error at
 /// its line and column, never truncated.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Exact<const N: usize>(pub(super) [f64; N]);
+pub(crate) struct Exact<const N: usize>(pub(crate) [f64; N]);
 
 impl<const N: usize> Default for Exact<N> {
     fn default() -> Self {
@@ -32,10 +35,29 @@ impl<'de, const N: usize> Deserialize<'de> for Exact<N> {
     }
 }
 
+impl<const N: usize> Exact<N> {
+    /// Whether every number is zero (the default, left out when writing).
+    pub(crate) fn is_zero(&self) -> bool {
+        self.0.iter().all(|x| *x == 0.0)
+    }
+}
+
+impl<const N: usize> Serialize for Exact<N> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        self.0.serialize(s)
+    }
+}
+
 /// A key `process` reads but cannot honour: any value is an error that
 /// says what to use instead.
 #[derive(Debug)]
-pub(super) struct Refused;
+pub(crate) struct Refused;
+
+impl Serialize for Refused {
+    fn serialize<S: serde::Serializer>(&self, _: S) -> Result<S::Ok, S::Error> {
+        Err(serde::ser::Error::custom("a refused key is never written"))
+    }
+}
 
 impl<'de> Deserialize<'de> for Refused {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
@@ -44,184 +66,212 @@ impl<'de> Deserialize<'de> for Refused {
 }
 
 /// The file as written.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct File {
+pub(crate) struct File {
     #[serde(default)]
-    pub(super) earth: EarthName,
-    pub(super) initial: Initial,
+    pub(crate) earth: EarthName,
+    pub(crate) initial: Initial,
     #[serde(default)]
-    pub(super) imu: Imu,
+    pub(crate) imu: Imu,
     #[serde(default)]
-    pub(super) filter: Filter,
+    pub(crate) filter: Filter,
     #[serde(default)]
-    pub(super) gnss: Gnss,
-    pub(super) odometer: Option<Odometer>,
-    pub(super) nhc: Option<Nhc>,
-    pub(super) zupt: Option<Zupt>,
-    pub(super) alignment: Option<Alignment>,
+    pub(crate) gnss: Gnss,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) odometer: Option<Odometer>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) nhc: Option<Nhc>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) zupt: Option<Zupt>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) alignment: Option<Alignment>,
     #[serde(default)]
-    pub(super) output: Output,
-    pub(super) imu_file: Option<ImuFile>,
-    pub(super) gnss_file: Option<GnssFile>,
-    pub(super) truth_file: Option<TruthFile>,
+    pub(crate) output: Output,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) imu_file: Option<ImuFile>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) gnss_file: Option<GnssFile>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) truth_file: Option<TruthFile>,
 }
 
 /// `[truth_file]`: the reference's format and where it is.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct TruthFile {
-    pub(super) format: Option<String>,
-    pub(super) quality: Option<Vec<u8>>,
-    pub(super) at: Option<String>,
-}
-
-/// The reference's format.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub enum TruthFormat {
-    /// The navigation format (position, velocity, attitude).
-    #[default]
-    Nav,
-    /// RTKLIB `.pos` of a better receiver: position only.
-    Rtklib {
-        /// The accepted `Q` flags.
-        quality: Vec<u8>,
-    },
-}
-
-/// How the reference is read and compared.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct TruthSettings {
-    /// Its format.
-    pub format: TruthFormat,
-    /// Whether its positions are the GNSS antenna's (else the IMU's): the
-    /// solution is then moved by the lever arm before comparing.
-    pub at_antenna: bool,
+pub(crate) struct TruthFile {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) format: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) quality: Option<Vec<u8>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) at: Option<String>,
 }
 
 /// `[gnss_file]`: the GNSS file's format.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct GnssFile {
-    pub(super) format: Option<String>,
-    pub(super) quality: Option<Vec<u8>>,
-}
-
-/// The GNSS file's format.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub enum GnssFormat {
-    /// The GINS text format (7 or 13 columns).
-    #[default]
-    Gins,
-    /// RTKLIB `.pos`, keeping the fixes whose quality flag `Q` is listed.
-    Rtklib {
-        /// The accepted `Q` values (1 fix, 2 float, 3 SBAS, 4 DGPS, 5 single,
-        /// 6 PPP).
-        quality: Vec<u8>,
-    },
+pub(crate) struct GnssFile {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) format: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) quality: Option<Vec<u8>>,
 }
 
 /// `[imu_file]`: how the IMU file is laid out (default: the GINS format).
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct ImuFile {
-    pub(super) delimiter: Option<String>,
-    pub(super) header_lines: Option<usize>,
-    pub(super) columns: Option<ImuColumns>,
-    pub(super) time: Option<String>,
-    pub(super) leap_seconds: Option<f64>,
-    pub(super) measures: Option<String>,
-    pub(super) gyro_unit: Option<String>,
-    pub(super) accel_unit: Option<String>,
-    pub(super) g: Option<f64>,
-    pub(super) axes: Option<[String; 3]>,
-    pub(super) mounting: Option<Exact<3>>,
+pub(crate) struct ImuFile {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) delimiter: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) header_lines: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) columns: Option<ImuColumns>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) time: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) leap_seconds: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) measures: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) gyro_unit: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) accel_unit: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) g: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) axes: Option<[String; 3]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) mounting: Option<Exact<3>>,
 }
 
 /// `[imu_file.columns]`, 1-based.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct ImuColumns {
-    pub(super) time: usize,
-    pub(super) week: Option<usize>,
-    pub(super) gyro: [usize; 3],
-    pub(super) accel: [usize; 3],
-    pub(super) odometer: Option<usize>,
+pub(crate) struct ImuColumns {
+    pub(crate) time: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) week: Option<usize>,
+    pub(crate) gyro: [usize; 3],
+    pub(crate) accel: [usize; 3],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) odometer: Option<usize>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct Initial {
+pub(crate) struct Initial {
     #[serde(default)]
-    pub(super) week: u32,
-    pub(super) time: f64,
-    pub(super) position: Option<V3>,
-    pub(super) velocity: Option<V3>,
-    pub(super) attitude: Option<V3>,
+    pub(crate) week: u32,
+    pub(crate) time: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) position: Option<V3>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) velocity: Option<V3>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) attitude: Option<V3>,
     /// Known sensor errors at the start (values, not σ): removed from the
     /// readings from the first sample; the filter estimates what is left.
-    pub(super) gyro_bias: Option<V3>,
-    pub(super) accel_bias: Option<V3>,
-    pub(super) gyro_scale: Option<V3>,
-    pub(super) accel_scale: Option<V3>,
-    pub(super) std: InitialStd,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) gyro_bias: Option<V3>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) accel_bias: Option<V3>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) gyro_scale: Option<V3>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) accel_scale: Option<V3>,
+    pub(crate) std: InitialStd,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct InitialStd {
-    pub(super) attitude: V3,
-    pub(super) velocity: V3,
-    pub(super) position: V3,
+pub(crate) struct InitialStd {
+    pub(crate) attitude: V3,
+    pub(crate) velocity: V3,
+    pub(crate) position: V3,
     #[serde(default)]
-    pub(super) gyro_bias: V3,
+    pub(crate) gyro_bias: V3,
+    #[serde(default, skip_serializing_if = "Exact::is_zero")]
+    pub(crate) gyro_markov: V3,
     #[serde(default)]
-    pub(super) gyro_markov: V3,
+    pub(crate) accel_bias: V3,
     #[serde(default)]
-    pub(super) accel_bias: V3,
-    #[serde(default)]
-    pub(super) odometer_scale: f64,
-    #[serde(default)]
-    pub(super) gyro_scale: V3,
-    #[serde(default)]
-    pub(super) accel_scale: V3,
+    pub(crate) odometer_scale: f64,
+    #[serde(default, skip_serializing_if = "Exact::is_zero")]
+    pub(crate) gyro_scale: V3,
+    #[serde(default, skip_serializing_if = "Exact::is_zero")]
+    pub(crate) accel_scale: V3,
 }
 
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct Imu {
-    pub(super) gyro_arw: Option<f64>,
-    pub(super) gyro_arw_deg_per_s_per_sqrt_hz: Option<f64>,
-    pub(super) gyro_bias_rw: Option<f64>,
-    pub(super) accel_bias_rw: Option<f64>,
-    pub(super) accel_vrw: Option<f64>,
-    pub(super) accel_vrw_ug_per_sqrt_hz: Option<f64>,
-    pub(super) gyro_bias: Option<Refused>,
-    pub(super) accel_bias: Option<Refused>,
+pub(crate) struct Imu {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) gyro_arw: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) gyro_arw_deg_per_s_per_sqrt_hz: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) gyro_bias_rw: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) accel_bias_rw: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) accel_vrw: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) accel_vrw_ug_per_sqrt_hz: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) gyro_bias: Option<Refused>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) accel_bias: Option<Refused>,
     #[serde(default)]
-    pub(super) gyro_markov_sigma: f64,
-    pub(super) gyro_markov_tau: Option<f64>,
+    pub(crate) gyro_markov_sigma: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) gyro_markov_tau: Option<f64>,
     #[serde(default)]
-    pub(super) accel_markov_sigma: f64,
-    pub(super) accel_markov_tau: Option<f64>,
-    pub(super) gyro_scale: Option<Refused>,
-    pub(super) accel_scale: Option<Refused>,
-    pub(super) scale_tau: Option<f64>,
-    pub(super) gyro_scale_sigma: Option<f64>,
-    pub(super) accel_scale_sigma: Option<f64>,
-    pub(super) max_gap: Option<f64>,
-    pub(super) long_gap: Option<String>,
+    pub(crate) accel_markov_sigma: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) accel_markov_tau: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) gyro_scale: Option<Refused>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) accel_scale: Option<Refused>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) scale_tau: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) gyro_scale_sigma: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) accel_scale_sigma: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) max_gap: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) long_gap: Option<String>,
 }
 
 /// `[filter]`: the error model, the covariance interval and the lever arm;
 /// every other key is the filter kind's ([`read_kind`]). Read key by key
 /// (not with `serde(flatten)`), so a wrong type keeps its line and column.
 #[derive(Debug, Default)]
-pub(super) struct Filter {
-    pub(super) error_model: ErrorModelName,
-    pub(super) covariance_interval: Option<f64>,
-    pub(super) lever_arm: V3,
-    pub(super) kind: Keys,
+pub(crate) struct Filter {
+    pub(crate) error_model: ErrorModelName,
+    pub(crate) covariance_interval: Option<f64>,
+    pub(crate) lever_arm: V3,
+    pub(crate) kind: Keys,
+}
+
+impl Serialize for Filter {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = s.serialize_map(None)?;
+        for (key, value) in &self.kind {
+            map.serialize_entry(key, value)?;
+        }
+        map.serialize_entry("error_model", &self.error_model)?;
+        if let Some(c) = self.covariance_interval {
+            map.serialize_entry("covariance_interval", &c)?;
+        }
+        map.serialize_entry("lever_arm", &self.lever_arm)?;
+        map.end()
+    }
 }
 
 impl<'de> Deserialize<'de> for Filter {
@@ -255,83 +305,91 @@ impl<'de> Deserialize<'de> for Filter {
     }
 }
 
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct Gnss {
+pub(crate) struct Gnss {
     #[serde(default)]
-    pub(super) noise: GnssNoiseSource,
-    pub(super) position_std: Option<V3>,
-    pub(super) velocity_std: Option<V3>,
+    pub(crate) noise: GnssNoiseSource,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) position_std: Option<V3>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) velocity_std: Option<V3>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct Odometer {
-    pub(super) rate: f64,
-    pub(super) speed_std: f64,
-    pub(super) nhc_std: f64,
+pub(crate) struct Odometer {
+    pub(crate) rate: f64,
+    pub(crate) speed_std: f64,
+    pub(crate) nhc_std: f64,
     #[serde(default)]
-    pub(super) mounting: Exact<2>,
+    pub(crate) mounting: Exact<2>,
     #[serde(default)]
-    pub(super) lever_arm: V3,
-    pub(super) scale_tau: f64,
-    pub(super) scale_sigma: f64,
+    pub(crate) lever_arm: V3,
+    pub(crate) scale_tau: f64,
+    pub(crate) scale_sigma: f64,
 }
 
 /// The highest pseudo-measurement rate accepted, Hz (an update per IMU
 /// sample of a 10 kHz IMU).
-pub(super) const MAX_RATE: f64 = 10_000.0;
+pub(crate) const MAX_RATE: f64 = 10_000.0;
 
 /// `[alignment]`: the initial attitude from the data.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct Alignment {
-    pub(super) static_time: f64,
-    pub(super) yaw: String,
-    pub(super) min_speed: Option<f64>,
-    pub(super) gyro_bias: Option<bool>,
-    pub(super) max_accel_std: Option<f64>,
+pub(crate) struct Alignment {
+    pub(crate) static_time: f64,
+    pub(crate) yaw: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) min_speed: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) gyro_bias: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) max_accel_std: Option<f64>,
 }
 
 /// `[nhc]`: the non-holonomic constraint without an odometer.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct Nhc {
-    pub(super) rate: f64,
-    pub(super) std: Exact<2>,
+pub(crate) struct Nhc {
+    pub(crate) rate: f64,
+    pub(crate) std: Exact<2>,
     #[serde(default)]
-    pub(super) mounting: Exact<2>,
+    pub(crate) mounting: Exact<2>,
     #[serde(default)]
-    pub(super) lever_arm: V3,
+    pub(crate) lever_arm: V3,
 }
 
 /// `[zupt]`: zero-velocity (and zero-angular-rate) updates at detected
 /// standstill.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct Zupt {
-    pub(super) window: Option<f64>,
-    pub(super) accel_std: f64,
-    pub(super) gyro_std: f64,
-    pub(super) rate: f64,
-    pub(super) velocity_std: f64,
+pub(crate) struct Zupt {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) window: Option<f64>,
+    pub(crate) accel_std: f64,
+    pub(crate) gyro_std: f64,
+    pub(crate) rate: f64,
+    pub(crate) velocity_std: f64,
     #[serde(default)]
-    pub(super) angular_rate_std: f64,
-    pub(super) max_speed: Option<f64>,
+    pub(crate) angular_rate_std: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) max_speed: Option<f64>,
 }
 
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct Output {
-    pub(super) interval: Option<f64>,
+pub(crate) struct Output {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(crate) interval: Option<f64>,
     #[serde(default)]
-    pub(super) position_axes: PositionAxes,
+    pub(crate) position_axes: PositionAxes,
 }
 
 /// `[gnss] noise`: where R comes from.
-#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
-pub(super) enum GnssNoiseSource {
+pub(crate) enum GnssNoiseSource {
     /// The σ on each line of the GNSS file.
     #[default]
     File,
