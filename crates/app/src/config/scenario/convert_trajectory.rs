@@ -115,48 +115,14 @@ fn segment(p: &str, s: &SegmentEntry) -> Res<Segment> {
         SegmentType::Stop => Segment::Stop {
             decel: need_num("decel_m_s2", s.decel_m_s2, Range::Positive)?,
         },
-        SegmentType::Climb => {
-            let climb =
-                match (s.pitch_deg, s.vertical_speed_m_s) {
-                    (Some(d), None) => ClimbRate::Pitch(
-                        num(
-                            &join(p, "pitch_deg"),
-                            d,
-                            Range::Interval(-90.0, 90.0, true, true),
-                        )?
-                        .to_radians(),
-                    ),
-                    (None, Some(v)) => {
-                        ClimbRate::Vertical(num(&join(p, "vertical_speed_m_s"), v, Range::Any)?)
-                    }
-                    _ => return Err(bad(
-                        p,
-                        "a `climb` segment needs exactly one of `pitch_deg`, `vertical_speed_m_s`",
-                    )),
-                };
-            Segment::Climb {
-                climb,
-                duration: duration()?,
-            }
-        }
-        SegmentType::Turn => {
-            let turn = match (s.rate_deg_s, s.radius_m) {
-                (Some(r), None) => {
-                    TurnRate::Rate(num(&join(p, "rate_deg_s"), r, Range::Positive)?.to_radians())
-                }
-                (None, Some(r)) => TurnRate::Radius(num(&join(p, "radius_m"), r, Range::Positive)?),
-                _ => {
-                    return Err(bad(
-                        p,
-                        "a `turn` segment needs exactly one of `rate_deg_s`, `radius_m`",
-                    ))
-                }
-            };
-            Segment::Turn {
-                turn,
-                angle: need_num("angle_deg", s.angle_deg, Range::Any)?.to_radians(),
-            }
-        }
+        SegmentType::Climb => Segment::Climb {
+            climb: climb(p, s)?,
+            duration: duration()?,
+        },
+        SegmentType::Turn => Segment::Turn {
+            turn: turn(p, s)?,
+            angle: need_num("angle_deg", s.angle_deg, Range::Any)?.to_radians(),
+        },
         SegmentType::SideSlip => Segment::SideSlip {
             angle: need_num(
                 "angle_deg",
@@ -166,23 +132,66 @@ fn segment(p: &str, s: &SegmentEntry) -> Res<Segment> {
             .to_radians(),
             duration: duration()?,
         },
-        SegmentType::Parallel => {
-            let parts = need(
-                &join(p, "parts"),
-                s.parts.as_ref(),
-                "a `parallel` segment needs its `parts`",
-            )?;
-            if parts.len() < 2 {
-                return Err(bad(join(p, "parts"), "needs at least 2 segments"));
-            }
-            let parts = parts
-                .iter()
-                .enumerate()
-                .map(|(i, q)| segment(&format!("{p}.parts[{i}]"), q))
-                .collect::<Res<Vec<_>>>()?;
-            Segment::Parallel(parts)
-        }
+        SegmentType::Parallel => Segment::Parallel(parts(p, s)?),
     })
+}
+
+/// A climb's pitch (deg) or vertical speed (m/s): exactly one.
+fn climb(p: &str, s: &SegmentEntry) -> Res<ClimbRate> {
+    match (s.pitch_deg, s.vertical_speed_m_s) {
+        (Some(d), None) => Ok(ClimbRate::Pitch(
+            num(
+                &join(p, "pitch_deg"),
+                d,
+                Range::Interval(-90.0, 90.0, true, true),
+            )?
+            .to_radians(),
+        )),
+        (None, Some(v)) => Ok(ClimbRate::Vertical(num(
+            &join(p, "vertical_speed_m_s"),
+            v,
+            Range::Any,
+        )?)),
+        _ => Err(bad(
+            p,
+            "a `climb` segment needs exactly one of `pitch_deg`, `vertical_speed_m_s`",
+        )),
+    }
+}
+
+/// A turn's rate (deg/s) or radius (m): exactly one.
+fn turn(p: &str, s: &SegmentEntry) -> Res<TurnRate> {
+    match (s.rate_deg_s, s.radius_m) {
+        (Some(r), None) => Ok(TurnRate::Rate(
+            num(&join(p, "rate_deg_s"), r, Range::Positive)?.to_radians(),
+        )),
+        (None, Some(r)) => Ok(TurnRate::Radius(num(
+            &join(p, "radius_m"),
+            r,
+            Range::Positive,
+        )?)),
+        _ => Err(bad(
+            p,
+            "a `turn` segment needs exactly one of `rate_deg_s`, `radius_m`",
+        )),
+    }
+}
+
+/// A parallel segment's parts: at least two, each a segment.
+fn parts(p: &str, s: &SegmentEntry) -> Res<Vec<Segment>> {
+    let parts = need(
+        &join(p, "parts"),
+        s.parts.as_ref(),
+        "a `parallel` segment needs its `parts`",
+    )?;
+    if parts.len() < 2 {
+        return Err(bad(join(p, "parts"), "needs at least 2 segments"));
+    }
+    parts
+        .iter()
+        .enumerate()
+        .map(|(i, q)| segment(&format!("{p}.parts[{i}]"), q))
+        .collect()
 }
 
 /// The file's name of a segment type.

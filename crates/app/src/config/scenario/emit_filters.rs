@@ -2,7 +2,7 @@
 //! `[[filters]]`.
 
 use crate::config::names::ErrorModelName;
-use crate::scenario::{ErrorModelKind, FilterKind, Scenario};
+use crate::scenario::{ErrorModelKind, FilterKind, InitialUncertainty, MeasurementNoise, Scenario};
 use kestrel::sim::ImuErrors;
 
 use super::emit_sections::decimal_deg;
@@ -65,8 +65,12 @@ pub(super) fn filter(w: &mut Writer, s: &Scenario) {
         "The IMU model the filter assumes (its Q), one number per quantity.",
     );
     imu_errors(w, &ImuErrors::from_spec(&f.imu_model));
+    p0(w, &f.p0, &f.error_model);
+    measurement_noise(w, &f.r);
+}
 
-    let p = &f.p0;
+/// `[filter.p0]`: the initial standard deviations.
+fn p0(w: &mut Writer, p: &InitialUncertainty, model: &ErrorModelKind) {
     w.table(
         "filter.p0",
         false,
@@ -104,7 +108,7 @@ pub(super) fn filter(w: &mut Writer, s: &Scenario) {
         p.odometer_scale,
         "odometer scale σ (odometer16): ppm or %",
     );
-    if matches!(f.error_model, ErrorModelKind::Ins21 { .. }) {
+    if matches!(model, ErrorModelKind::Ins21 { .. }) {
         w.quantity(
             "gyro_scale",
             &RATIO,
@@ -118,8 +122,10 @@ pub(super) fn filter(w: &mut Writer, s: &Scenario) {
             "accelerometer scale-factor σ (ins21): ppm or %",
         );
     }
+}
 
-    let r = &f.r;
+/// `[filter.r]`: the measurement noise the filters assume.
+fn measurement_noise(w: &mut Writer, r: &MeasurementNoise) {
     w.table(
         "filter.r",
         false,

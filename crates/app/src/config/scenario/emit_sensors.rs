@@ -1,8 +1,10 @@
 //! The sensor tables of a written scenario file.
 
 use crate::scenario::Scenario;
+use kestrel::nalgebra::Vector3;
 use kestrel::sim::{
-    GnssConfig, ImuErrors, OdometerConfig, OdometerFaultKind, OutlierKind, ReportedStd, TimeWindow,
+    GnssConfig, ImuErrors, MultipathBursts, OdometerConfig, OdometerFaultKind, OutlierKind,
+    ReportedStd, TimeWindow,
 };
 
 use crate::config::units::{ACCEL, ACCEL_NOISE, GYRO_NOISE, GYRO_RATE, RATIO, SI};
@@ -123,6 +125,13 @@ pub(super) fn gnss(w: &mut Writer, g: &GnssConfig) {
         reported,
         "σ in the fixes: \"nominal\" (base) or \"actual\" (in effect)",
     );
+    noise_windows(w, g);
+    outliers(w, g);
+    outages(w, g);
+}
+
+/// `[[gnss.noise_window]]`: noise changes.
+fn noise_windows(w: &mut Writer, g: &GnssConfig) {
     for (i, n) in g.noise_windows.iter().enumerate() {
         let c = if i == 0 {
             "Noise changes (the first matching window applies)."
@@ -143,6 +152,10 @@ pub(super) fn gnss(w: &mut Writer, g: &GnssConfig) {
             );
         }
     }
+}
+
+/// `[[gnss.outlier]]`: faults, one table each.
+fn outliers(w: &mut Writer, g: &GnssConfig) {
     for (i, o) in g.outliers.iter().enumerate() {
         let c = if i == 0 {
             "Outliers: type = \"patch\" (every fix: offset + uniform ±amplitude, NED) or\n\"spikes\" (each fix with a probability: random direction, size uniform in [min, max])."
@@ -156,104 +169,133 @@ pub(super) fn gnss(w: &mut Writer, g: &GnssConfig) {
                 position_amplitude,
                 velocity_offset,
                 velocity_amplitude,
-            } => {
-                w.string("type", "patch", "every fix corrupted");
-                window_keys(w, &o.window);
-                w.quantity(
-                    "position_offset_m",
-                    &[&SI],
+            } => patch(
+                w,
+                &o.window,
+                [
                     position_offset,
-                    "constant position error, m",
-                );
-                w.quantity(
-                    "position_amplitude_m",
-                    &[&SI],
                     position_amplitude,
-                    "uniform position error half-width, m",
-                );
-                w.quantity(
-                    "velocity_offset_m_s",
-                    &[&SI],
                     velocity_offset,
-                    "constant velocity error, m/s",
-                );
-                w.quantity(
-                    "velocity_amplitude_m_s",
-                    &[&SI],
                     velocity_amplitude,
-                    "uniform velocity error half-width, m/s",
-                );
-            }
+                ],
+            ),
             OutlierKind::Spikes {
                 probability,
                 position,
                 velocity,
-            } => {
-                w.string("type", "spikes", "isolated gross errors");
-                window_keys(w, &o.window);
-                w.num("probability", probability, "chance per fix, [0, 1]");
-                let pair = |(a, b): (f64, f64)| format!("[{}, {}]", number(a), number(b));
-                w.raw(
-                    "position_error_m",
-                    &pair(position),
-                    "size range [min, max], m",
-                );
-                w.raw(
-                    "velocity_error_m_s",
-                    &pair(velocity),
-                    "size range [min, max], m/s",
-                );
-            }
-            OutlierKind::Multipath(m) => {
-                w.string(
-                    "type",
-                    "multipath",
-                    "randomly timed multipath / NLOS bursts",
-                );
-                window_keys(w, &o.window);
-                let pair = |(a, b): (f64, f64)| format!("[{}, {}]", number(a), number(b));
-                w.num(
-                    "onset_probability",
-                    m.onset_probability,
-                    "chance per fix that a burst starts, [0, 1]",
-                );
-                w.raw(
-                    "burst_duration_s",
-                    &pair(m.duration),
-                    "burst length range [min, max], s",
-                );
-                w.num(
-                    "rise_s",
-                    m.rise,
-                    "bias build-up and fall-off time, s (0: a step)",
-                );
-                w.quantity(
-                    "position_bias_m",
-                    &[&SI],
-                    m.position,
-                    "largest per-burst bias ± per axis, m",
-                );
-                w.quantity(
-                    "position_jitter_m",
-                    &[&SI],
-                    m.position_jitter,
-                    "per-fix error half-width, m",
-                );
-                w.quantity(
-                    "velocity_bias_m_s",
-                    &[&SI],
-                    m.velocity_bias,
-                    "largest per-burst velocity bias ±, m/s",
-                );
-                w.quantity(
-                    "velocity_jitter_m_s",
-                    &[&SI],
-                    m.velocity,
-                    "per-fix velocity error half-width, m/s",
-                );
-            }
+            } => spikes(w, &o.window, probability, position, velocity),
+            OutlierKind::Multipath(m) => multipath(w, &o.window, &m),
         }
     }
+}
+
+/// A patch: every fix in the window offset plus a uniform error.
+fn patch(w: &mut Writer, window: &TimeWindow, v: [Vector3<f64>; 4]) {
+    let [position_offset, position_amplitude, velocity_offset, velocity_amplitude] = v;
+    w.string("type", "patch", "every fix corrupted");
+    window_keys(w, window);
+    w.quantity(
+        "position_offset_m",
+        &[&SI],
+        position_offset,
+        "constant position error, m",
+    );
+    w.quantity(
+        "position_amplitude_m",
+        &[&SI],
+        position_amplitude,
+        "uniform position error half-width, m",
+    );
+    w.quantity(
+        "velocity_offset_m_s",
+        &[&SI],
+        velocity_offset,
+        "constant velocity error, m/s",
+    );
+    w.quantity(
+        "velocity_amplitude_m_s",
+        &[&SI],
+        velocity_amplitude,
+        "uniform velocity error half-width, m/s",
+    );
+}
+
+/// Spikes: isolated gross errors with a probability per fix.
+fn spikes(
+    w: &mut Writer,
+    window: &TimeWindow,
+    probability: f64,
+    position: (f64, f64),
+    velocity: (f64, f64),
+) {
+    w.string("type", "spikes", "isolated gross errors");
+    window_keys(w, window);
+    w.num("probability", probability, "chance per fix, [0, 1]");
+    let pair = |(a, b): (f64, f64)| format!("[{}, {}]", number(a), number(b));
+    w.raw(
+        "position_error_m",
+        &pair(position),
+        "size range [min, max], m",
+    );
+    w.raw(
+        "velocity_error_m_s",
+        &pair(velocity),
+        "size range [min, max], m/s",
+    );
+}
+
+/// Multipath / NLOS bursts at random times.
+fn multipath(w: &mut Writer, window: &TimeWindow, m: &MultipathBursts) {
+    w.string(
+        "type",
+        "multipath",
+        "randomly timed multipath / NLOS bursts",
+    );
+    window_keys(w, window);
+    let pair = |(a, b): (f64, f64)| format!("[{}, {}]", number(a), number(b));
+    w.num(
+        "onset_probability",
+        m.onset_probability,
+        "chance per fix that a burst starts, [0, 1]",
+    );
+    w.raw(
+        "burst_duration_s",
+        &pair(m.duration),
+        "burst length range [min, max], s",
+    );
+    w.num(
+        "rise_s",
+        m.rise,
+        "bias build-up and fall-off time, s (0: a step)",
+    );
+    w.quantity(
+        "position_bias_m",
+        &[&SI],
+        m.position,
+        "largest per-burst bias ± per axis, m",
+    );
+    w.quantity(
+        "position_jitter_m",
+        &[&SI],
+        m.position_jitter,
+        "per-fix error half-width, m",
+    );
+    w.quantity(
+        "velocity_bias_m_s",
+        &[&SI],
+        m.velocity_bias,
+        "largest per-burst velocity bias ±, m/s",
+    );
+    w.quantity(
+        "velocity_jitter_m_s",
+        &[&SI],
+        m.velocity,
+        "per-fix velocity error half-width, m/s",
+    );
+}
+
+/// `[[gnss.outage]]`: no fixes in these windows.
+fn outages(w: &mut Writer, g: &GnssConfig) {
     for (i, o) in g.outages.iter().enumerate() {
         w.table(
             "gnss.outage",
