@@ -14,8 +14,8 @@
 //! the same binary. Adapters: `plain` (none), `sage_husa`,
 //! `divergence_fading` (`γ = 3`), `strong_tracking` (`ρ = 0.95`, `β = 1`),
 //! `outlier_compression` (`α = 0.05`), `improved_adaptive`
-//! (`ImprovedAdaptive::paper000`), `sage_husa_fading`
-//! (`SageHusaFading::paper000`), `huber_inflation`, `chi_square_gate`
+//! (`ImprovedAdaptive::as_published`), `sage_husa_fading`
+//! (`SageHusaFading::as_published`), `huber_inflation`, `chi_square_gate`
 //! (`α = 0.01`), `windowed_noise` (window 10); not `fuzzy_gain`, whose inputs
 //! the caller sets every epoch. Also the two measuring adapters of
 //! `adapter_parts` (`common::parts`): `pass_through` (the adapter way, no
@@ -55,17 +55,21 @@ fn steps_of<const N: usize>(name: &str, steps: usize) -> bool {
             let r = common::model::Model::<f64, N, M>::of_step_benchmarks().r;
             cycle_steps::<_, N, M>(FixedNoise::scaled(&r), steps)
         }
-        "sage_husa" => cycle_steps::<_, N, M>(SageHusa::paper().unwrap(), steps),
+        "sage_husa" => cycle_steps::<_, N, M>(SageHusa::as_published().unwrap(), steps),
         "divergence_fading" => {
             cycle_steps::<_, N, M>(DivergenceFading::new(3.0, 100.0).unwrap(), steps)
         }
         "strong_tracking" => cycle_steps::<_, N, M>(StrongTracking::new(0.95, 1.0).unwrap(), steps),
         "outlier_compression" => {
-            cycle_steps::<_, N, M>(OutlierCompression::paper().unwrap(), steps)
+            cycle_steps::<_, N, M>(OutlierCompression::as_published().unwrap(), steps)
         }
-        "improved_adaptive" => cycle_steps::<_, N, M>(ImprovedAdaptive::paper000().unwrap(), steps),
-        "sage_husa_fading" => cycle_steps::<_, N, M>(SageHusaFading::paper000().unwrap(), steps),
-        "huber_inflation" => cycle_steps::<_, N, M>(HuberInflation::paper().unwrap(), steps),
+        "improved_adaptive" => {
+            cycle_steps::<_, N, M>(ImprovedAdaptive::as_published().unwrap(), steps)
+        }
+        "sage_husa_fading" => {
+            cycle_steps::<_, N, M>(SageHusaFading::as_published().unwrap(), steps)
+        }
+        "huber_inflation" => cycle_steps::<_, N, M>(HuberInflation::as_published().unwrap(), steps),
         "chi_square_gate" => cycle_steps::<_, N, M>(ChiSquareGate::new(0.01).unwrap(), steps),
         "windowed_noise" => {
             cycle_steps::<_, N, M>(WindowedNoise::<f64, M, 10>::new(1e-3).unwrap(), steps)

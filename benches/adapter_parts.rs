@@ -10,10 +10,10 @@
 //!   way ([`PassThrough`](common::parts::PassThrough));
 //! - `fixed_noise`: puts a fixed `R̂` and its factor in place every epoch
 //!   ([`FixedNoise`](common::parts::FixedNoise)), as Sage–Husa does;
-//! - `sage_husa`: `SageHusa::paper()` alone;
-//! - `tests`: `(OutlierCompression::paper(), DivergenceFading::new(3, 100))`,
+//! - `sage_husa`: `SageHusa::as_published()` alone;
+//! - `tests`: `(OutlierCompression::as_published(), DivergenceFading::new(3, 100))`,
 //!   the composition's tests without `R̂`;
-//! - `improved`: `ImprovedAdaptive::paper000()`, the tests around Sage–Husa.
+//! - `improved`: `ImprovedAdaptive::as_published()`, the tests around Sage–Husa.
 //!
 //! Each ratio is taken within a round, so a part's cost is the ratio of two
 //! neighbours: the adapter way (`pass_through ÷ plain`), a new `R`
@@ -81,7 +81,7 @@ fn measure(rounds: usize) -> [Vec<f64>; WORKLOADS.len()] {
     let ekf = || Ekf::new(m.x0, m.p0).unwrap();
     let tests = || {
         (
-            OutlierCompression::<f64, M>::paper().unwrap(),
+            OutlierCompression::<f64, M>::as_published().unwrap(),
             DivergenceFading::new(3.0, 100.0).unwrap(),
         )
     };
@@ -97,14 +97,14 @@ fn measure(rounds: usize) -> [Vec<f64>; WORKLOADS.len()] {
     let mut fixed = cycled("fixed_noise", ekf().with_adapter(fixed), &m, &zs, |r| {
         r.adapted_nis != r.nis
     });
-    let sage_husa = SageHusa::<f64, M>::paper().unwrap();
+    let sage_husa = SageHusa::<f64, M>::as_published().unwrap();
     let mut sage_husa = cycled("sage_husa", ekf().with_adapter(sage_husa), &m, &zs, |r| {
         r.adapters.estimated
     });
     let mut tests = cycled("tests", ekf().with_adapter(tests()), &m, &zs, |r| {
         r.adapters.0.compressed || r.adapters.1.diverged
     });
-    let improved = ImprovedAdaptive::paper000().unwrap();
+    let improved = ImprovedAdaptive::as_published().unwrap();
     let mut improved = cycled("improved", ekf().with_adapter(improved), &m, &zs, |r| {
         r.adapters.sage_husa.estimated && r.adapters.tests.0.compressed
     });

@@ -15,8 +15,8 @@
 //! Groups `adapter_step/<N>/<variant>`, variants: `plain`, `sage_husa`,
 //! `divergence_fading` (`γ = 3`), `strong_tracking` (`ρ = 0.95`, `β = 1`: it
 //! fades in a large share of the epochs), `outlier_compression`
-//! (`α = 0.05`), `improved_adaptive` (`ImprovedAdaptive::paper000`),
-//! `sage_husa_fading` (`SageHusaFading::paper000`), `huber_inflation`,
+//! (`α = 0.05`), `improved_adaptive` (`ImprovedAdaptive::as_published`),
+//! `sage_husa_fading` (`SageHusaFading::as_published`), `huber_inflation`,
 //! `chi_square_gate` (`α = 0.01`), `windowed_noise` (window 10),
 //! `fuzzy_gain` (odometer rule base, inputs set every epoch).
 //!
@@ -90,9 +90,13 @@ fn time<const N: usize, A: NoiseAdapter<f64, M>>(
 
 fn size<const N: usize>(g: &mut Group) {
     time::<N, ()>(g, "plain", (), no_hook, |_| true);
-    time::<N, _>(g, "sage_husa", SageHusa::paper().unwrap(), no_hook, |r| {
-        r.adapters.estimated
-    });
+    time::<N, _>(
+        g,
+        "sage_husa",
+        SageHusa::as_published().unwrap(),
+        no_hook,
+        |r| r.adapters.estimated,
+    );
     time::<N, _>(
         g,
         "divergence_fading",
@@ -110,28 +114,28 @@ fn size<const N: usize>(g: &mut Group) {
     time::<N, _>(
         g,
         "outlier_compression",
-        OutlierCompression::paper().unwrap(),
+        OutlierCompression::as_published().unwrap(),
         no_hook,
         |r| r.adapters.compressed,
     );
     time::<N, _>(
         g,
         "improved_adaptive",
-        ImprovedAdaptive::paper000().unwrap(),
+        ImprovedAdaptive::as_published().unwrap(),
         no_hook,
         |r| r.adapters.sage_husa.estimated && r.adapters.tests.0.compressed,
     );
     time::<N, _>(
         g,
         "sage_husa_fading",
-        SageHusaFading::paper000().unwrap(),
+        SageHusaFading::as_published().unwrap(),
         no_hook,
         |r| r.adapters.sage_husa.estimated,
     );
     time::<N, _>(
         g,
         "huber_inflation",
-        HuberInflation::paper().unwrap(),
+        HuberInflation::as_published().unwrap(),
         no_hook,
         |r| r.adapters.inflated > 0,
     );

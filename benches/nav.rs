@@ -21,7 +21,7 @@ mod nav_common;
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use kestrel::nav::error_model::{ErrorModel15, ErrorModel18};
+use kestrel::nav::error_model::{Ins15Model, Ins18Model};
 use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::Strapdown;
 
@@ -45,13 +45,13 @@ fn error_model(c: &mut Criterion) {
     let f = Vector3::new(0.3, 1.9, -9.79);
     c.bench_function("nav_step/error_model", |b| {
         b.iter(|| {
-            let m = ErrorModel15::new(&earth, &spec, black_box(&nav), black_box(&f), 0.1);
+            let m = Ins15Model::new(&earth, &spec, black_box(&nav), black_box(&f), 0.1);
             black_box((m.phi()[(3, 1)], m.qd()[(0, 0)]))
         })
     });
     c.bench_function("nav_step/error_model_18", |b| {
         b.iter(|| {
-            let m = ErrorModel18::new(&earth, &spec, black_box(&nav), black_box(&f), 0.1);
+            let m = Ins18Model::new(&earth, &spec, black_box(&nav), black_box(&f), 0.1);
             black_box((m.phi()[(3, 1)], m.qd()[(0, 0)]))
         })
     });

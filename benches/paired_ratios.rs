@@ -5,8 +5,8 @@
 //!
 //! In a criterion run the two cells of a ratio are timed minutes apart,
 //! and on a shared machine one can fall in a slow period and the other not
-//! (run by run, UKF ÷ KF moved between 2.09 and 3.55 in the seventeenth
-//! round's five runs of `step`). Here the eight steps and a throughput
+//! (run by run, UKF ÷ KF has moved between 2.09 and 3.55 over five runs of
+//! `step`; `docs/notes/benchmark-rounds.md`). Here the eight steps and a throughput
 //! probe take turns within one process, as `common::rounds` describes, and
 //! each ratio is taken within a round.
 //!
@@ -150,7 +150,7 @@ fn measure(rounds: usize) -> [Vec<f64>; WORKLOADS.len()] {
     let zs = measurements(&m64);
     let ekf = || Ekf::new(m64.x0, m64.p0).unwrap();
     let mut plain = cycled("plain", ekf(), &m64, &zs, |_| true);
-    let adapter = ImprovedAdaptive::paper000().unwrap();
+    let adapter = ImprovedAdaptive::as_published().unwrap();
     let mut improved = cycled("improved", ekf().with_adapter(adapter), &m64, &zs, |r| {
         r.adapters.sage_husa.estimated && r.adapters.tests.0.compressed
     });

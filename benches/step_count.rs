@@ -96,7 +96,7 @@ fn cycle_steps<const N: usize, const M: usize>(improved: bool, steps: usize) -> 
     }
     let f = Ekf::new(m.x0, m.p0).unwrap();
     if improved {
-        let adapter = kestrel::adaptive::ImprovedAdaptive::paper000().unwrap();
+        let adapter = kestrel::adaptive::ImprovedAdaptive::as_published().unwrap();
         go(f.with_adapter(adapter), &process, &measurement, &zs, steps);
     } else {
         go(f, &process, &measurement, &zs, steps);
@@ -176,7 +176,7 @@ where
         "kf_nis" => run::<_, N, M, _, false>(Ekf::new(m.x0, m.p0).unwrap(), &m, m.r, steps),
         "kf_diag" | "kf_diag_batch" => return diag_steps::<T, N, M>(filter, steps),
         "kf_improved" => {
-            let adapter = kestrel::adaptive::ImprovedAdaptive::paper000().unwrap();
+            let adapter = kestrel::adaptive::ImprovedAdaptive::as_published().unwrap();
             let f = Ekf::new(m.x0, m.p0).unwrap().with_adapter(adapter);
             let process = LinearProcess::new(m.phi, m.q);
             let measurement = LinearMeasurement::new(m.h, m.r);

@@ -18,7 +18,7 @@ fn main() -> Result<(), FilterError> {
     let p0 = Matrix4::identity() * 10.0;
     let mut plain = Ekf::new(Vector4::zeros(), p0)?;
     let mut adaptive =
-        Ekf::new(Vector4::zeros(), p0)?.with_adapter(ImprovedAdaptive::<f64, 2>::paper000()?);
+        Ekf::new(Vector4::zeros(), p0)?.with_adapter(ImprovedAdaptive::<f64, 2>::as_published()?);
 
     let mut rng = ChaCha8Rng::seed_from_u64(7);
     let mut truth = Vector4::new(0.0, 1.0, 0.0, -0.5);

@@ -15,7 +15,7 @@
 //! that keeps many instructions in flight loses more than code that waits
 //! on one dependent chain. Each round therefore also times a [`Probe`]:
 //! independent integer and float operations with no memory traffic, which
-//! slowed by 1.4–1.5 × in such periods (benchmark notes, fourteenth round).
+//! slowed by 1.4–1.5 × in such periods (`docs/notes/benchmark-rounds.md`).
 //! A round whose probe took more than [`CONTENDED`] × the probe's fastest
 //! round of the run counts as contended. When no round of a run was
 //! uncontended the fastest is a contended one and the split says nothing:

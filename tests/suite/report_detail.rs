@@ -155,7 +155,7 @@ fn without_adapter_every_form_and_path() {
 
 #[test]
 fn with_the_paper_000_composition() {
-    let adapter = || ImprovedAdaptive::<f64, 2>::paper000().expect("paper parameters");
+    let adapter = || ImprovedAdaptive::<f64, 2>::as_published().expect("paper parameters");
     let ekf = Ekf::<f64, 4>::new(x0(), p0()).expect("finite");
     let ukf = Ukf::<f64, 4>::new(x0(), p0()).expect("finite");
     let sr = SrUkf::<f64, 4>::new(x0(), p0()).expect("finite");

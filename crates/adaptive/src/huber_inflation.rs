@@ -16,7 +16,7 @@ use crate::chi_square::significance_threshold;
 /// use kestrel_core::nalgebra::{Matrix2, Vector2};
 /// let r = Matrix2::new(1.0, 0.5, 0.5, 1.0);
 /// for shape in [InflationShape::Congruence, InflationShape::Diagonal] {
-///     let mut huber = HuberInflation::<f64, 2>::paper().unwrap().with_shape(shape);
+///     let mut huber = HuberInflation::<f64, 2>::as_published().unwrap().with_shape(shape);
 ///     let mut step = GainStep::new(Vector2::new(10.0, 0.0), Matrix2::identity(), None, r)
 ///         .unwrap();
 ///     let mut report = Default::default();
@@ -109,7 +109,7 @@ impl<T: Real, const M: usize> Default for HuberReport<T, M> {
 /// use kestrel_adaptive::HuberInflation;
 /// use kestrel_core::adapter::{GainStep, NoiseAdapter};
 /// use kestrel_core::nalgebra::{Matrix2, Vector2};
-/// let mut huber = HuberInflation::<f64, 2>::paper().unwrap();
+/// let mut huber = HuberInflation::<f64, 2>::as_published().unwrap();
 /// // H P⁻ Hᵀ = I, R = I: C = 2 I; ν = (10, 0) gives T = 50 > χ²₀.₉₅(2).
 /// let mut step = GainStep::new(
 ///     Vector2::new(10.0, 0.0), Matrix2::identity(), None, Matrix2::identity(),
@@ -161,11 +161,14 @@ impl<T: Real, const M: usize> HuberInflation<T, M> {
         })
     }
 
-    /// The paper's configuration: significance 0.05.
+    /// The published configuration: significance 0.05 (Miao, Zhou, Tian and
+    /// Cui, *Extended Robust Kalman Filter Based on Innovation Chi-Square
+    /// Test Algorithm and Its Application*, 2014; paper 002 in
+    /// `crates/core/REFERENCES.md`).
     ///
     /// # Errors
     /// `InvalidParameter { name: "dof", valid: "at least 1 (the measurement dimension M)" }` for `M = 0`.
-    pub fn paper() -> Result<Self, FilterError> {
+    pub fn as_published() -> Result<Self, FilterError> {
         Self::new(lit(Self::PAPER_SIGNIFICANCE))
     }
 

@@ -89,7 +89,7 @@ impl<R: Default, T: Real> Default for CompositionReport<R, T> {
 /// let sensor = LinearMeasurement::new(Matrix2::identity(), Matrix2::identity());
 /// let mut kf = Ekf::new(Vector2::zeros(), Matrix2::identity())
 ///     .unwrap()
-///     .with_adapter(ImprovedAdaptive::<f64, 2>::paper000().unwrap());
+///     .with_adapter(ImprovedAdaptive::<f64, 2>::as_published().unwrap());
 /// kf.predict(&process, 1.0).unwrap();
 /// // An outlier is compressed; R̂ learns only in epochs without fading.
 /// let report = kf.update(&sensor, &Vector2::new(50.0, 0.0)).unwrap();
@@ -105,7 +105,7 @@ pub type ImprovedAdaptive<T, const M: usize> =
 ///
 /// ```
 /// use kestrel_adaptive::SageHusaFading;
-/// let baseline = SageHusaFading::<f64, 6>::paper000().unwrap();
+/// let baseline = SageHusaFading::<f64, 6>::as_published().unwrap();
 /// assert_eq!(baseline.tests.reserve(), 3.0);
 /// assert_eq!(baseline.sage_husa.forgetting(), 0.95);
 /// ```
@@ -137,8 +137,11 @@ impl<T: Real, const M: usize> ImprovedAdaptive<T, M> {
         ))
     }
 
-    /// The paper's parameters `b = 0.95`, `α = 0.05`, and, where the paper
-    /// leaves the choice open, `γ = 3` and `λ_max = 100`.
+    /// The published parameters `b = 0.95`, `α = 0.05` (Yuan, Yan, Pang and
+    /// Zhang, *The Application of Improved Adaptive Kalman Filter to
+    /// GPS/SINS*, J. Air Force Eng. Univ. 16(5), 2015; paper 000 in
+    /// `crates/core/REFERENCES.md`) and, where the paper leaves the choice
+    /// open, `γ = 3` and `λ_max = 100`.
     ///
     /// `γ` must stay below the compression threshold `c = χ²_{0.95}(M)`: a
     /// compressed innovation has `νᵀν ≤ c λ_max(C) ≤ c tr C`, so with
@@ -162,13 +165,13 @@ impl<T: Real, const M: usize> ImprovedAdaptive<T, M> {
     ///
     /// # Errors
     /// `"dof"` if `M = 0`.
-    pub fn paper000() -> Result<Self, FilterError> {
+    pub fn as_published() -> Result<Self, FilterError> {
         Ok(Self::new(
             (
-                OutlierCompression::paper()?,
+                OutlierCompression::as_published()?,
                 DivergenceFading::new(lit(3.0), lit(100.0))?,
             ),
-            SageHusa::paper()?,
+            SageHusa::as_published()?,
         ))
     }
 }
@@ -186,16 +189,16 @@ impl<T: Real, const M: usize> SageHusaFading<T, M> {
         ))
     }
 
-    /// The baseline with the parameters of [`ImprovedAdaptive::paper000`]
+    /// The baseline with the parameters of [`ImprovedAdaptive::as_published`]
     /// (`b = 0.95`, `γ = 3`, `λ_max = 100`).
     ///
     /// # Errors
     /// Never for these constants; the `Result` matches the other
     /// constructors.
-    pub fn paper000() -> Result<Self, FilterError> {
+    pub fn as_published() -> Result<Self, FilterError> {
         Ok(Self::new(
             DivergenceFading::new(lit(3.0), lit(100.0))?,
-            SageHusa::paper()?,
+            SageHusa::as_published()?,
         ))
     }
 }

@@ -16,7 +16,7 @@
 //! // A gate for gross errors first, then Huber inflation of R (paper 002).
 //! let adapter = (
 //!     ChiSquareGate::<f64, 1>::new(0.001).unwrap(),
-//!     HuberInflation::<f64, 1>::paper().unwrap(),
+//!     HuberInflation::<f64, 1>::as_published().unwrap(),
 //! );
 //! let mut kf = Ekf::new(Vector2::zeros(), Matrix2::identity())
 //!     .unwrap()

@@ -80,11 +80,14 @@ impl<T: Real, const M: usize> OutlierCompression<T, M> {
         })
     }
 
-    /// Compression at the paper's `α = 0.05`.
+    /// Compression at the published `α = 0.05` (Yuan, Yan, Pang and Zhang,
+    /// *The Application of Improved Adaptive Kalman Filter to GPS/SINS*,
+    /// J. Air Force Eng. Univ. 16(5), 2015; paper 000 in
+    /// `crates/core/REFERENCES.md`).
     ///
     /// # Errors
     /// `"dof"` if `M = 0`.
-    pub fn paper() -> Result<Self, FilterError> {
+    pub fn as_published() -> Result<Self, FilterError> {
         Self::new(lit(0.05))
     }
 

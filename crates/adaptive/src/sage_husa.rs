@@ -146,13 +146,14 @@ impl<T: Real, const M: usize> SageHusa<T, M> {
         }
     }
 
-    /// The paper's set-up: `b = 0.95`, the fast end of its range, so that
+    /// The published set-up (Yuan, Yan, Pang and Zhang, 2015; paper 000 in
+    /// `crates/core/REFERENCES.md`): `b = 0.95`, the fast end of its range, so that
     /// `R̂` follows a change of the noise level within about 20 epochs.
     ///
     /// # Errors
     /// None for this `b`; the `Result` keeps one rule for every adapter's
     /// constructor.
-    pub fn paper() -> Result<Self, FilterError> {
+    pub fn as_published() -> Result<Self, FilterError> {
         Self::new(lit(0.95))
     }
 

@@ -6,7 +6,7 @@ use nalgebra::{SVector, Vector3};
 
 use crate::attitude::{attitude_error, correct_attitude};
 use crate::earth::Ellipsoid;
-use crate::error_model::{eighteen, fifteen};
+use crate::error_model::{ins15, ins18};
 use crate::imu::ImuIncrement;
 use crate::state::NavState;
 use kestrel_core::real::to_f64;
@@ -57,9 +57,9 @@ impl NavError {
         const { assert!(N >= 9, "an error state holds at least [φ, δv, δr]") };
         let v = |i: usize| Vector3::new(to_f64(x[i]), to_f64(x[i + 1]), to_f64(x[i + 2]));
         Self {
-            phi: v(fifteen::ATT),
-            dv: v(fifteen::VEL),
-            dr: v(fifteen::POS),
+            phi: v(ins15::ATT),
+            dv: v(ins15::VEL),
+            dr: v(ins15::POS),
         }
     }
 
@@ -192,7 +192,7 @@ impl ImuBiases {
 /// state to zero.
 ///
 /// ```
-/// use kestrel_nav::{feedback15, Ellipsoid, Euler, Geodetic, ImuBiases, NavState,
+/// use kestrel_nav::{feedback_ins15, Ellipsoid, Euler, Geodetic, ImuBiases, NavState,
 ///     nalgebra::{SVector, Vector3}};
 /// let earth = Ellipsoid::wgs84();
 /// let mut s = NavState::new(0.0, Geodetic::new(0.5, 0.0, 0.0), Vector3::zeros(), Euler::default());
@@ -200,18 +200,18 @@ impl ImuBiases {
 /// let mut dx = SVector::<f64, 15>::zeros();
 /// dx[9] = 1e-5;
 /// dx[5] = 0.5;
-/// feedback15(&earth, &mut s, &mut b, &dx);
+/// feedback_ins15(&earth, &mut s, &mut b, &dx);
 /// assert_eq!((b.gyro.x, s.vel.z), (1e-5, -0.5));
 /// ```
-pub fn feedback15<T: Real>(
+pub fn feedback_ins15<T: Real>(
     earth: &Ellipsoid,
     state: &mut NavState,
     biases: &mut ImuBiases,
     dx: &SVector<T, 15>,
 ) {
     *state = NavError::from_error_state(dx).correct(earth, state);
-    biases.gyro += sub3(dx, fifteen::GYRO_BIAS);
-    biases.accel += sub3(dx, fifteen::ACCEL_BIAS);
+    biases.gyro += sub3(dx, ins15::GYRO_BIAS);
+    biases.accel += sub3(dx, ins15::ACCEL_BIAS);
 }
 
 /// Feeds an 18-state estimate `[φ, δv, δr, ε_c, ε_r, ∇]` back: corrects
@@ -221,7 +221,7 @@ pub fn feedback15<T: Real>(
 /// interval is `Δt/τ` of the estimate, negligible for `τ` of an hour).
 ///
 /// ```
-/// use kestrel_nav::{feedback18, Ellipsoid, Euler, Geodetic, ImuBiases, NavState,
+/// use kestrel_nav::{feedback_ins18, Ellipsoid, Euler, Geodetic, ImuBiases, NavState,
 ///     nalgebra::{SVector, Vector3}};
 /// let earth = Ellipsoid::wgs84();
 /// let mut s = NavState::new(0.0, Geodetic::new(0.5, 0.0, 0.0), Vector3::zeros(), Euler::default());
@@ -230,18 +230,18 @@ pub fn feedback15<T: Real>(
 /// dx[9] = 1e-5;
 /// dx[12] = 2e-5;
 /// dx[17] = 1e-3;
-/// feedback18(&earth, &mut s, &mut b, &dx);
+/// feedback_ins18(&earth, &mut s, &mut b, &dx);
 /// assert!((b.gyro.x - 3e-5).abs() < 1e-20 && b.accel.z == 1e-3);
 /// ```
-pub fn feedback18<T: Real>(
+pub fn feedback_ins18<T: Real>(
     earth: &Ellipsoid,
     state: &mut NavState,
     biases: &mut ImuBiases,
     dx: &SVector<T, 18>,
 ) {
     *state = NavError::from_error_state(dx).correct(earth, state);
-    biases.gyro += sub3(dx, eighteen::GYRO_CONST) + sub3(dx, eighteen::GYRO_MARKOV);
-    biases.accel += sub3(dx, eighteen::ACCEL_BIAS);
+    biases.gyro += sub3(dx, ins18::GYRO_CONST) + sub3(dx, ins18::GYRO_MARKOV);
+    biases.accel += sub3(dx, ins18::ACCEL_BIAS);
 }
 
 fn sub3<T: Real, const N: usize>(x: &SVector<T, N>, i: usize) -> Vector3<f64> {

@@ -59,7 +59,7 @@ pub use attitude::{
     attitude_error, correct_attitude, error_rotation, quaternion_to_rotation_vector,
     rotation_vector_to_quaternion, skew, Euler,
 };
-pub use correction::{feedback15, feedback18, ImuBiases, NavError};
+pub use correction::{feedback_ins15, feedback_ins18, ImuBiases, NavError};
 pub use earth::{Ellipsoid, NormalGravity};
 pub use geodetic::Geodetic;
 pub use imu::ImuIncrement;

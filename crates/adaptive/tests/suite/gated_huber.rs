@@ -25,7 +25,7 @@ fn a_gross_error_moves_huber_alone_but_not_the_gated_combination() {
 
     let mut alone = SrUkf::new(x0, p0)
         .unwrap()
-        .with_adapter(HuberInflation::<f64, 2>::paper().unwrap());
+        .with_adapter(HuberInflation::<f64, 2>::as_published().unwrap());
     alone.update(&Radar, &z).unwrap();
     let moved = (alone.state() - x0).norm();
     // The documented failure: the floored weight lets the error through.

@@ -358,7 +358,7 @@ fn paper_constructors_run_every_form() {
     impl Build for Improved {
         type A<T: Real> = ImprovedAdaptive<T, 2>;
         fn build<T: Real>(&self) -> Self::A<T> {
-            ImprovedAdaptive::paper000().unwrap()
+            ImprovedAdaptive::as_published().unwrap()
         }
         fn estimate<T: Real>(a: &Self::A<T>) -> Option<Matrix2<T>> {
             Some(*a.sage_husa.estimate())
@@ -369,7 +369,7 @@ fn paper_constructors_run_every_form() {
     impl Build for Baseline {
         type A<T: Real> = SageHusaFading<T, 2>;
         fn build<T: Real>(&self) -> Self::A<T> {
-            SageHusaFading::paper000().unwrap()
+            SageHusaFading::as_published().unwrap()
         }
         fn estimate<T: Real>(a: &Self::A<T>) -> Option<Matrix2<T>> {
             Some(*a.sage_husa.estimate())

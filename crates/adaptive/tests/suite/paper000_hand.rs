@@ -376,7 +376,10 @@ fn sage_husa_parameters_are_validated() {
         bad("initial")
     );
     assert_eq!(param(sh.with_floor(Vector2::new(0.1, -1.0))), bad("floor"));
-    assert_eq!(SageHusa::<f64, 2>::paper().unwrap().forgetting(), 0.95);
+    assert_eq!(
+        SageHusa::<f64, 2>::as_published().unwrap().forgetting(),
+        0.95
+    );
 }
 
 #[test]

@@ -89,9 +89,12 @@ fn every_form<T: Real, A: NoiseAdapter<T, 2> + Clone>(
 }
 
 fn all_adapters<T: Real>() {
-    every_form(SageHusa::<T, 2>::paper().unwrap(), |name, reports| {
-        assert!(reports.iter().all(|a| a.estimated), "{name}");
-    });
+    every_form(
+        SageHusa::<T, 2>::as_published().unwrap(),
+        |name, reports| {
+            assert!(reports.iter().all(|a| a.estimated), "{name}");
+        },
+    );
     every_form(
         DivergenceFading::<T>::new(to(3.0), to(100.0)).unwrap(),
         |name, reports| {
@@ -107,14 +110,14 @@ fn all_adapters<T: Real>() {
         },
     );
     every_form(
-        OutlierCompression::<T, 2>::paper().unwrap(),
+        OutlierCompression::<T, 2>::as_published().unwrap(),
         |name, reports| {
             let compressed = reports.iter().filter(|a| a.compressed).count();
             assert!(compressed >= 5, "{name}: {compressed} compressed");
         },
     );
     every_form(
-        ImprovedAdaptive::<T, 2>::paper000().unwrap(),
+        ImprovedAdaptive::<T, 2>::as_published().unwrap(),
         |name, reports| {
             let compressed = reports.iter().filter(|a| a.tests.0.compressed).count();
             let skipped = reports
@@ -128,7 +131,7 @@ fn all_adapters<T: Real>() {
         },
     );
     every_form(
-        SageHusaFading::<T, 2>::paper000().unwrap(),
+        SageHusaFading::<T, 2>::as_published().unwrap(),
         |name, reports| {
             let skipped = reports
                 .iter()
@@ -139,9 +142,9 @@ fn all_adapters<T: Real>() {
     );
     every_form(
         (
-            OutlierCompression::<T, 2>::paper().unwrap(),
+            OutlierCompression::<T, 2>::as_published().unwrap(),
             StrongTracking::<T>::new(to(0.95), to(1.0)).unwrap(),
-            SageHusa::<T, 2>::paper().unwrap(),
+            SageHusa::<T, 2>::as_published().unwrap(),
         ),
         |name, reports| {
             let skipped = reports.iter().filter(|a| a.2.skipped_for_fade).count();

@@ -5,7 +5,7 @@
 //! epoch of 2500–2599 carries an outlier of (+50, −50) (the paper's "patchy
 //! outliers"). Position RMS over epochs 100–2999, every form, `f64`, for
 //! the plain filter, the "Sage-Husa + fading" baseline and the improved
-//! adaptive filter, both with [`ImprovedAdaptive::paper000`]'s parameters.
+//! adaptive filter, both with [`ImprovedAdaptive::as_published`]'s parameters.
 //!
 //! Asserted, as in the paper's table 1: the improved filter is the most
 //! accurate of the three overall (RMS below 0.8 × the plain filter's and
@@ -76,8 +76,8 @@ fn errors<F: CvForm<f64>, A: NoiseAdapter<f64, 2>>(mut filter: Filter<f64, 4, F,
 fn ordering<F: CvForm<f64>>(name: &str, make: Make<F>) {
     let new = || make(cv::x0(), cv::p0());
     let plain = errors(new());
-    let baseline = errors(new().with_adapter(SageHusaFading::paper000().unwrap()));
-    let improved = errors(new().with_adapter(ImprovedAdaptive::paper000().unwrap()));
+    let baseline = errors(new().with_adapter(SageHusaFading::as_published().unwrap()));
+    let improved = errors(new().with_adapter(ImprovedAdaptive::as_published().unwrap()));
     let overall = |e: &[f64]| support::rms(&e[100..]);
     let outliers = |e: &[f64]| support::rms(&e[2500..2700]);
     let (p, b, i) = (overall(&plain), overall(&baseline), overall(&improved));

@@ -30,7 +30,7 @@ const QUANTILE_TOL: f64 = 1e-9;
 
 /// The paper's test with its thresholds `(T', χ²_0.95(2))`, checked.
 fn paper_huber() -> (HuberInflation<f64, 2>, f64, f64) {
-    let h = HuberInflation::<f64, 2>::paper().unwrap();
+    let h = HuberInflation::<f64, 2>::as_published().unwrap();
     assert!((h.component_threshold() - T1).abs() < QUANTILE_TOL);
     assert!((h.global_threshold() - T2).abs() < QUANTILE_TOL);
     (h, h.component_threshold(), h.global_threshold())
@@ -52,7 +52,7 @@ macro_rules! each_form_2d {
 
 #[test]
 fn thresholds_are_the_chi_square_quantiles() {
-    let h = HuberInflation::<f64, 2>::paper().unwrap();
+    let h = HuberInflation::<f64, 2>::as_published().unwrap();
     assert!((h.global_threshold() - T2).abs() < 1e-9);
     assert!((h.component_threshold() - T1).abs() < 1e-9);
     assert!((chi_square_quantile(0.95, 2).unwrap() - T2).abs() < 1e-9);
@@ -66,7 +66,7 @@ fn thresholds_are_the_chi_square_quantiles() {
     assert!(HuberInflation::<f64, 2>::new(0.01).is_ok());
     assert!(HuberInflation::<f64, 2>::new(0.15).is_ok());
     assert_eq!(
-        HuberInflation::<f32, 2>::paper().unwrap().shape(),
+        HuberInflation::<f32, 2>::as_published().unwrap().shape(),
         InflationShape::Congruence
     );
 }
@@ -170,23 +170,26 @@ fn huber_global_pass_leaves_everything_bit_for_bit() {
     // the component test only runs after a global fault.
     let m = planar_walk(Matrix2::new(1.0, 0.25, 0.25, 1.0));
     for z in [Vector2::new(2.0, 2.0), Vector2::new(3.0, 0.0)] {
-        each_form_2d!(HuberInflation::<f64, 2>::paper().unwrap(), |name, f| {
-            let mut plain = f.clone().with_adapter(Passive);
-            let detail = epoch_detailed(&mut f, &m, z).unwrap();
-            let report = &detail.report;
-            let want_detail = epoch_detailed(&mut plain, &m, z).unwrap();
-            let a = report.adapters;
-            assert!(!a.fault, "{name}");
-            assert_eq!(a.factors, Vector2::new(1.0, 1.0), "{name}");
-            assert_eq!(a.inflated, 0, "{name}");
-            assert_eq!(bits(&detail.noise), bits(&m.1.noise), "{name}");
-            assert_eq!(bits(f.state()), bits(plain.state()), "{name}");
-            assert_eq!(bits(&f.covariance()), bits(&plain.covariance()), "{name}");
-            assert_eq!(
-                detail.innovation_covariance,
-                want_detail.innovation_covariance
-            );
-        });
+        each_form_2d!(
+            HuberInflation::<f64, 2>::as_published().unwrap(),
+            |name, f| {
+                let mut plain = f.clone().with_adapter(Passive);
+                let detail = epoch_detailed(&mut f, &m, z).unwrap();
+                let report = &detail.report;
+                let want_detail = epoch_detailed(&mut plain, &m, z).unwrap();
+                let a = report.adapters;
+                assert!(!a.fault, "{name}");
+                assert_eq!(a.factors, Vector2::new(1.0, 1.0), "{name}");
+                assert_eq!(a.inflated, 0, "{name}");
+                assert_eq!(bits(&detail.noise), bits(&m.1.noise), "{name}");
+                assert_eq!(bits(f.state()), bits(plain.state()), "{name}");
+                assert_eq!(bits(&f.covariance()), bits(&plain.covariance()), "{name}");
+                assert_eq!(
+                    detail.innovation_covariance,
+                    want_detail.innovation_covariance
+                );
+            }
+        );
     }
 }
 
@@ -207,8 +210,8 @@ fn huber_without_fault_matches_the_plain_filter_bit_for_bit_on_a_stream() {
     let sensor = cv::sensor::<f64>(&spec.r);
     let process = cv::process::<f64>(spec.q);
     let mut passes = 0;
-    let mut f =
-        support::ekf(cv::x0(), cv::p0()).with_adapter(HuberInflation::<f64, 2>::paper().unwrap());
+    let mut f = support::ekf(cv::x0(), cv::p0())
+        .with_adapter(HuberInflation::<f64, 2>::as_published().unwrap());
     for z in &stream.z {
         f.predict(&process, 1.0).unwrap();
         let mut plain = f.clone().with_adapter(Passive);
@@ -260,7 +263,7 @@ fn outliers_case<T: Real, F: CvForm<T>>(
 
     let reference = position_rms(make(cv::x0(), cv::p0()), &clean, &r);
     let plain = position_rms(make(cv::x0(), cv::p0()), &stream, &r);
-    let huber = HuberInflation::<T, 2>::paper().unwrap();
+    let huber = HuberInflation::<T, 2>::as_published().unwrap();
     let robust = position_rms(make(cv::x0(), cv::p0()).with_adapter(huber), &stream, &r);
     assert!(
         robust <= 1.5 * reference,

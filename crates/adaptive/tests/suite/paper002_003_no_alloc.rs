@@ -103,7 +103,7 @@ fn every_form<T: Real, A: NoiseAdapter<T, 2> + Clone>(
 
 fn all_adapters<T: Real>() {
     every_form(
-        HuberInflation::<T, 2>::paper().unwrap(),
+        HuberInflation::<T, 2>::as_published().unwrap(),
         no_inputs,
         |name, reports| {
             let inflated = reports.iter().filter(|(_, a)| a.inflated > 0).count();
@@ -145,7 +145,7 @@ fn all_adapters<T: Real>() {
             ChiSquareGate::<T, 2>::new(kestrel_core::real::lit(0.01)).unwrap(),
             FuzzyGain::<T, 2>::odometer().unwrap(),
             WindowedNoise::<T, 2, 10>::new(to(0.5)).unwrap(),
-            HuberInflation::<T, 2>::paper().unwrap(),
+            HuberInflation::<T, 2>::as_published().unwrap(),
         ),
         |a, i| a.1.set_inputs(i),
         |name, reports| {

@@ -143,9 +143,9 @@ pub fn build_filter<const M: usize, L: FilterLoop<M>>(
         }
         // The window is a compile-time length (no allocation in the update).
         FilterKind::FuzzyAdaptive { window } => match window {
-            10 => run.odometer(FuzzyOdometer::<f64, 10>::paper003().map_err(Invalid)?),
-            20 => run.odometer(FuzzyOdometer::<f64, 20>::paper003().map_err(Invalid)?),
-            50 => run.odometer(FuzzyOdometer::<f64, 50>::paper003().map_err(Invalid)?),
+            10 => run.odometer(FuzzyOdometer::<f64, 10>::as_published().map_err(Invalid)?),
+            20 => run.odometer(FuzzyOdometer::<f64, 20>::as_published().map_err(Invalid)?),
+            50 => run.odometer(FuzzyOdometer::<f64, 50>::as_published().map_err(Invalid)?),
             _ => {
                 return Err(Unsupported(
                     "fuzzy R windows of 10, 20 or 50 innovations only",

@@ -8,23 +8,21 @@
 //! 000–004; each one's documentation lists what the paper states and what
 //! was chosen where it is silent.
 
+mod aircraft_outliers;
+mod fast_aircraft;
 mod filters;
-mod s000;
-mod s001;
-mod s002;
-mod s003;
-mod s004;
+mod odometer_faults;
 mod setup;
 mod study;
+mod uav_manoeuvres;
+mod urban_multipath;
 
 use kestrel::nalgebra::Vector3;
 
+pub use aircraft_outliers::scenario_000;
+pub use fast_aircraft::scenario_001;
 pub use filters::{FadeBlock, FilterKind, Param, ParamValue};
-pub use s000::scenario_000;
-pub use s001::scenario_001;
-pub use s002::scenario_002;
-pub use s003::scenario_003;
-pub use s004::scenario_004;
+pub use odometer_faults::scenario_003;
 pub use setup::{
     ErrorModelKind, FilterSetup, InitialErrors, InitialUncertainty, MeasurementKind,
     MeasurementNoise,
@@ -33,6 +31,8 @@ pub use study::{
     fault_free, tuned, variants, Variant, STUDY_SEEDS_FROM, TEST_SEEDS_FROM, TUNED_003_THRESHOLD,
     TUNING_SEEDS,
 };
+pub use uav_manoeuvres::scenario_004;
+pub use urban_multipath::scenario_002;
 
 use kestrel::nav::attitude::correct_attitude;
 use kestrel::nav::earth::Ellipsoid;

@@ -40,7 +40,7 @@ fn fault_processing_suppresses_the_odometer_faults() {
     let threshold = run_003(true, Processing::Threshold(MaxThreshold::new(1.0)));
     let fuzzy = run_003(
         true,
-        Processing::Fuzzy(Box::new(FuzzyOdometer::paper003().unwrap())),
+        Processing::Fuzzy(Box::new(FuzzyOdometer::as_published().unwrap())),
     );
     for (name, r) in [
         ("clean", &clean),

@@ -71,7 +71,7 @@ pub fn run_003(faults: bool, mut processing: Processing) -> DrRun {
 
     let traj = sc.trajectory().unwrap();
     let start = traj.initial_state();
-    let system = InsOdometer16::new(sc.filter.imu_model, ScaleFactorProcess::paper003());
+    let system = InsOdometer16::new(sc.filter.imu_model, ScaleFactorProcess::as_published());
     let std = sc.filter.p0.std_vector(sc.filter.error_model);
     let p0 =
         SMatrix::<f64, 16, 16>::from_diagonal(&SVector::from_iterator(std.iter().map(|s| s * s)));

@@ -4,9 +4,7 @@
 use nalgebra::{SMatrix, Vector3};
 
 use crate::earth::Ellipsoid;
-use crate::error_model::{
-    fifteen, twentyone, ErrorModel15, ErrorModel18, ErrorModel21, ForcingMean,
-};
+use crate::error_model::{ins15, ins21, ForcingMean, Ins15Model, Ins18Model, Ins21Model};
 use crate::imu_spec::ImuSpec;
 use crate::measurement::ErrorLayout;
 use crate::state::NavState;
@@ -89,7 +87,7 @@ pub(crate) fn fill_block<const N: usize>(p: &mut SMatrix<f64, N, N>, first: usiz
 }
 
 /// The 15-state system `[φ, δv, δr, b_g, b_a]` of
-/// [`ErrorModel15`] for an IMU of specification `spec`.
+/// [`Ins15Model`] for an IMU of specification `spec`.
 ///
 /// ```
 /// use kestrel_nav::ImuSpec;
@@ -117,27 +115,27 @@ impl Ins15 {
 }
 
 impl ErrorLayout<15> for Ins15 {
-    const GYRO_BIAS: &'static [usize] = &[fifteen::GYRO_BIAS];
-    const ACCEL_BIAS: &'static [usize] = &[fifteen::ACCEL_BIAS];
+    const GYRO_BIAS: &'static [usize] = &[ins15::GYRO_BIAS];
+    const ACCEL_BIAS: &'static [usize] = &[ins15::ACCEL_BIAS];
 }
 
 impl ErrorSystem<15> for Ins15 {
-    type Process = ErrorModel15;
+    type Process = Ins15Model;
 
-    fn process(&self, earth: &Ellipsoid, nav: &NavState, forcing: &ForcingMean) -> ErrorModel15 {
-        ErrorModel15::from_mean(earth, &self.spec, nav, forcing)
+    fn process(&self, earth: &Ellipsoid, nav: &NavState, forcing: &ForcingMean) -> Ins15Model {
+        Ins15Model::from_mean(earth, &self.spec, nav, forcing)
     }
 
     fn initial_covariance(&self, nav: &InitialUncertainty) -> SMatrix<f64, 15, 15> {
         let mut p = SMatrix::zeros();
         nav.fill(&mut p);
-        fill_biases(&mut p, &self.spec, fifteen::GYRO_BIAS, fifteen::ACCEL_BIAS);
+        fill_biases(&mut p, &self.spec, ins15::GYRO_BIAS, ins15::ACCEL_BIAS);
         p
     }
 }
 
 /// The 18-state system `[φ, δv, δr, ε_c, ε_r, ∇]` of papers 000 and 004
-/// ([`ErrorModel18`]).
+/// ([`Ins18Model`]).
 ///
 /// ```
 /// use kestrel_nav::ImuSpec;
@@ -166,21 +164,21 @@ impl Ins18 {
 
 impl ErrorLayout<18> for Ins18 {
     const GYRO_BIAS: &'static [usize] = &[
-        crate::error_model::eighteen::GYRO_CONST,
-        crate::error_model::eighteen::GYRO_MARKOV,
+        crate::error_model::ins18::GYRO_CONST,
+        crate::error_model::ins18::GYRO_MARKOV,
     ];
-    const ACCEL_BIAS: &'static [usize] = &[crate::error_model::eighteen::ACCEL_BIAS];
+    const ACCEL_BIAS: &'static [usize] = &[crate::error_model::ins18::ACCEL_BIAS];
 }
 
 impl ErrorSystem<18> for Ins18 {
-    type Process = ErrorModel18;
+    type Process = Ins18Model;
 
-    fn process(&self, earth: &Ellipsoid, nav: &NavState, forcing: &ForcingMean) -> ErrorModel18 {
-        ErrorModel18::from_mean(earth, &self.spec, nav, forcing)
+    fn process(&self, earth: &Ellipsoid, nav: &NavState, forcing: &ForcingMean) -> Ins18Model {
+        Ins18Model::from_mean(earth, &self.spec, nav, forcing)
     }
 
     fn initial_covariance(&self, nav: &InitialUncertainty) -> SMatrix<f64, 18, 18> {
-        use crate::error_model::eighteen::{ACCEL_BIAS, GYRO_CONST, GYRO_MARKOV};
+        use crate::error_model::ins18::{ACCEL_BIAS, GYRO_CONST, GYRO_MARKOV};
         let mut p = SMatrix::zeros();
         nav.fill(&mut p);
         let s = &self.spec;
@@ -198,7 +196,7 @@ impl ErrorSystem<18> for Ins18 {
 }
 
 /// The 21-state system `[φ, δv, δr, b_g, b_a, s_g, s_a]` of
-/// [`ErrorModel21`]: the 15 states plus gyro and accelerometer scale-factor
+/// [`Ins21Model`]: the 15 states plus gyro and accelerometer scale-factor
 /// errors, random constants or (finite `scale_tau`) first-order
 /// Gauss-Markov processes of steady-state σ `spec.gyro_scale`,
 /// `spec.accel_scale`. Their initial σ are those of the spec too.
@@ -236,26 +234,26 @@ impl Ins21 {
 }
 
 impl ErrorLayout<21> for Ins21 {
-    const GYRO_BIAS: &'static [usize] = &[twentyone::GYRO_BIAS];
-    const ACCEL_BIAS: &'static [usize] = &[twentyone::ACCEL_BIAS];
-    const GYRO_SCALE: Option<usize> = Some(twentyone::GYRO_SCALE);
-    const ACCEL_SCALE: Option<usize> = Some(twentyone::ACCEL_SCALE);
+    const GYRO_BIAS: &'static [usize] = &[ins21::GYRO_BIAS];
+    const ACCEL_BIAS: &'static [usize] = &[ins21::ACCEL_BIAS];
+    const GYRO_SCALE: Option<usize> = Some(ins21::GYRO_SCALE);
+    const ACCEL_SCALE: Option<usize> = Some(ins21::ACCEL_SCALE);
 }
 
 impl ErrorSystem<21> for Ins21 {
-    type Process = ErrorModel21;
+    type Process = Ins21Model;
 
-    fn process(&self, earth: &Ellipsoid, nav: &NavState, forcing: &ForcingMean) -> ErrorModel21 {
-        ErrorModel21::from_mean_scaled(earth, &self.spec, self.scale_tau, nav, forcing)
+    fn process(&self, earth: &Ellipsoid, nav: &NavState, forcing: &ForcingMean) -> Ins21Model {
+        Ins21Model::from_mean_scaled(earth, &self.spec, self.scale_tau, nav, forcing)
     }
 
     fn initial_covariance(&self, nav: &InitialUncertainty) -> SMatrix<f64, 21, 21> {
         let mut p = SMatrix::zeros();
         nav.fill(&mut p);
         let s = &self.spec;
-        fill_biases(&mut p, s, twentyone::GYRO_BIAS, twentyone::ACCEL_BIAS);
-        fill_block(&mut p, twentyone::GYRO_SCALE, s.gyro_scale);
-        fill_block(&mut p, twentyone::ACCEL_SCALE, s.accel_scale);
+        fill_biases(&mut p, s, ins21::GYRO_BIAS, ins21::ACCEL_BIAS);
+        fill_block(&mut p, ins21::GYRO_SCALE, s.gyro_scale);
+        fill_block(&mut p, ins21::ACCEL_SCALE, s.accel_scale);
         p
     }
 }

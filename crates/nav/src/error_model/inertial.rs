@@ -20,14 +20,14 @@ pub const POS: usize = 6;
 
 /// Where the sensor errors sit in an inertial error state whose first nine
 /// components are `[φ, δv, δr]` ([`ATT`], [`VEL`], [`POS`]); implemented
-/// by [`ErrorModel15`](super::ErrorModel15) and
-/// [`ErrorModel18`](super::ErrorModel18), whose constructors it drives.
+/// by [`Ins15Model`](super::Ins15Model) and
+/// [`Ins18Model`](super::Ins18Model), whose constructors it drives.
 ///
 /// ```
-/// use kestrel_nav::error_model::{ErrorModel15, ErrorModel18, InertialLayout};
-/// assert_eq!(<ErrorModel15 as InertialLayout>::GYRO_CONST, None);
-/// assert_eq!(<ErrorModel18 as InertialLayout>::GYRO_CONST, Some(9));
-/// assert_eq!(<ErrorModel18 as InertialLayout>::GYRO_BIAS, 12);
+/// use kestrel_nav::error_model::{Ins15Model, Ins18Model, InertialLayout};
+/// assert_eq!(<Ins15Model as InertialLayout>::GYRO_CONST, None);
+/// assert_eq!(<Ins18Model as InertialLayout>::GYRO_CONST, Some(9));
+/// assert_eq!(<Ins18Model as InertialLayout>::GYRO_BIAS, 12);
 /// ```
 pub trait InertialLayout {
     /// First index of the gyro bias (body, rad/s): a first-order
@@ -54,11 +54,11 @@ where
     ///
     /// ```
     /// use kestrel_nav::{Ellipsoid, Euler, Geodetic, ImuSpec, NavState, nalgebra::Vector3};
-    /// use kestrel_nav::error_model::{ErrorModel15, fifteen::{ATT, GYRO_BIAS}};
+    /// use kestrel_nav::error_model::{Ins15Model, ins15::{ATT, GYRO_BIAS}};
     /// let nav = NavState::new(0.0, Geodetic::from_degrees(30.0, 114.0, 0.0), Vector3::zeros(),
     ///     Euler::default());
     /// let spec = ImuSpec::perfect().with_gyro_arw_deg_per_sqrt_h(0.1);
-    /// let m = ErrorModel15::new(&Ellipsoid::wgs84(), &spec, &nav, &Vector3::new(0.0, 0.0, -9.79), 0.1);
+    /// let m = Ins15Model::new(&Ellipsoid::wgs84(), &spec, &nav, &Vector3::new(0.0, 0.0, -9.79), 0.1);
     /// // Level, yaw 0: a gyro x bias tilts about north, φ̇_N = −b_x.
     /// assert!((m.phi()[(ATT, GYRO_BIAS)] + 0.1).abs() < 1e-6);
     /// ```
@@ -80,7 +80,7 @@ where
     /// ```
     /// use kestrel_nav::{Ellipsoid, Euler, Geodetic, ImuIncrement, ImuSpec, NavState, Strapdown,
     ///     nalgebra::Vector3};
-    /// use kestrel_nav::error_model::{ErrorModel15, ErrorModel18, ForcingMean};
+    /// use kestrel_nav::error_model::{Ins15Model, Ins18Model, ForcingMean};
     /// let earth = Ellipsoid::wgs84();
     /// let s = NavState::new(0.0, Geodetic::new(0.5, 0.0, 0.0), Vector3::zeros(), Euler::default());
     /// let mut ins = Strapdown::new(earth, s);
@@ -91,9 +91,9 @@ where
     ///     ins.step(&imu);
     ///     mean.add(&ins, imu.dt);
     /// }
-    /// let m = ErrorModel15::from_mean(&earth, &ImuSpec::perfect(), &s, &mean);
+    /// let m = Ins15Model::from_mean(&earth, &ImuSpec::perfect(), &s, &mean);
     /// assert!((m.dt() - 0.1).abs() < 1e-15);
-    /// let m = ErrorModel18::from_mean(&earth, &ImuSpec::perfect(), &s, &mean);
+    /// let m = Ins18Model::from_mean(&earth, &ImuSpec::perfect(), &s, &mean);
     /// assert!((m.dt() - 0.1).abs() < 1e-15);
     /// ```
     pub fn from_mean(
@@ -112,15 +112,15 @@ where
     ///
     /// ```
     /// use kestrel_nav::{Ellipsoid, Euler, Geodetic, ImuSpec, NavState, nalgebra::Vector3};
-    /// use kestrel_nav::error_model::{eighteen, fifteen, ErrorModel15, ErrorModel18};
+    /// use kestrel_nav::error_model::{ins18, ins15, Ins15Model, Ins18Model};
     /// let nav = NavState::new(0.0, Geodetic::new(0.5, 0.0, 0.0), Vector3::zeros(),
     ///     Euler::from_degrees(0.0, 0.0, 90.0));
     /// let (earth, spec, f) = (Ellipsoid::wgs84(), ImuSpec::perfect(), Vector3::zeros());
     /// // Yaw 90°: body x points east, so a gyro x bias tilts about east.
-    /// let (f15, _) = ErrorModel15::continuous(&earth, &spec, &nav, &f);
-    /// assert!((f15[(fifteen::ATT + 1, fifteen::GYRO_BIAS)] + 1.0).abs() < 1e-15);
-    /// let (f18, _) = ErrorModel18::continuous(&earth, &spec, &nav, &f);
-    /// assert!((f18[(eighteen::ATT + 1, eighteen::GYRO_CONST)] + 1.0).abs() < 1e-15);
+    /// let (f15, _) = Ins15Model::continuous(&earth, &spec, &nav, &f);
+    /// assert!((f15[(ins15::ATT + 1, ins15::GYRO_BIAS)] + 1.0).abs() < 1e-15);
+    /// let (f18, _) = Ins18Model::continuous(&earth, &spec, &nav, &f);
+    /// assert!((f18[(ins18::ATT + 1, ins18::GYRO_CONST)] + 1.0).abs() < 1e-15);
     /// ```
     pub fn continuous(
         earth: &Ellipsoid,
@@ -146,14 +146,14 @@ where
     ///
     /// ```
     /// use kestrel_nav::{Ellipsoid, Euler, Geodetic, ImuSpec, NavState, nalgebra::{Matrix3, Vector3}};
-    /// use kestrel_nav::error_model::{eighteen::{ATT, GYRO_CONST, GYRO_MARKOV}, ErrorModel15,
-    ///     ErrorModel18};
+    /// use kestrel_nav::error_model::{ins18::{ATT, GYRO_CONST, GYRO_MARKOV}, Ins15Model,
+    ///     Ins18Model};
     /// let nav = NavState::new(0.0, Geodetic::new(0.5, 0.0, 0.0), Vector3::zeros(), Euler::default());
     /// let (earth, c, f) = (Ellipsoid::wgs84(), Matrix3::identity(), Vector3::zeros());
     /// let spec = ImuSpec::perfect().with_accel_vrw_m_s_per_sqrt_h(0.06);
-    /// let (_, q) = ErrorModel15::continuous_with(&earth, &spec, &nav, &c, &f);
+    /// let (_, q) = Ins15Model::continuous_with(&earth, &spec, &nav, &c, &f);
     /// assert!((q[3] - 1e-6).abs() < 1e-18);
-    /// let (f, _) = ErrorModel18::continuous_with(&earth, &ImuSpec::perfect(), &nav, &c, &f);
+    /// let (f, _) = Ins18Model::continuous_with(&earth, &ImuSpec::perfect(), &nav, &c, &f);
     /// // Both gyro drifts enter the attitude error the same way.
     /// assert_eq!(f[(ATT, GYRO_CONST)], f[(ATT, GYRO_MARKOV)]);
     /// ```

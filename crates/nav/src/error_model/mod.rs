@@ -15,16 +15,16 @@
 
 mod discrete;
 mod dynamics;
-pub mod eighteen;
-pub mod fifteen;
 mod forcing;
 mod inertial;
-pub mod twentyone;
+pub mod ins15;
+pub mod ins18;
+pub mod ins21;
 
 pub use discrete::{discretise, ErrorStateModel};
 pub use dynamics::nav_error_dynamics;
-pub use eighteen::ErrorModel18;
-pub use fifteen::ErrorModel15;
 pub use forcing::ForcingMean;
 pub use inertial::InertialLayout;
-pub use twentyone::ErrorModel21;
+pub use ins15::Ins15Model;
+pub use ins18::Ins18Model;
+pub use ins21::Ins21Model;

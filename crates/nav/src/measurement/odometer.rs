@@ -77,7 +77,7 @@ impl OdometerReading {
 /// let nav = NavState::new(0.0, Geodetic::from_degrees(34.0, 120.0, 200.0),
 ///     Vector3::new(0.0, 20.0, 0.0), Euler::from_degrees(0.0, 0.0, 90.0));
 /// let ins = InsContext::new(Ellipsoid::wgs84(), nav, Vector3::zeros());
-/// let layout = InsOdometer16::new(ImuSpec::perfect(), ScaleFactorProcess::paper003());
+/// let layout = InsOdometer16::new(ImuSpec::perfect(), ScaleFactorProcess::as_published());
 /// let odo = Odometer::new(0.02, 0.1);
 /// // The odometer reads 1 % fast.
 /// let m = odo.forward_nhc::<f64, 16, _>(&layout, &ins, &OdometerReading::new(0.0, 20.2), 0.0);
@@ -172,7 +172,7 @@ impl Odometer {
     /// let nav = NavState::new(0.0, Geodetic::from_degrees(34.0, 120.0, 200.0),
     ///     Vector3::new(10.0, 0.0, 0.0), Euler::default());
     /// let ins = InsContext::new(Ellipsoid::wgs84(), nav, Vector3::zeros());
-    /// let layout = InsOdometer16::new(ImuSpec::perfect(), ScaleFactorProcess::paper003());
+    /// let layout = InsOdometer16::new(ImuSpec::perfect(), ScaleFactorProcess::as_published());
     /// // A known 1 % scale error: the corrected speed matches.
     /// let m = Odometer::new(0.02, 0.1).forward::<f32, 16, _>(&layout, &ins,
     ///     &OdometerReading::new(0.0, 10.1), 0.01);
@@ -222,7 +222,7 @@ impl Odometer {
     /// let nav = NavState::new(0.0, Geodetic::from_degrees(34.0, 120.0, 200.0),
     ///     Vector3::new(10.0, 0.0, 0.0), Euler::default());
     /// let ins = InsContext::new(Ellipsoid::wgs84(), nav, Vector3::zeros());
-    /// let layout = InsOdometer16::new(ImuSpec::perfect(), ScaleFactorProcess::paper003());
+    /// let layout = InsOdometer16::new(ImuSpec::perfect(), ScaleFactorProcess::as_published());
     /// let m = Odometer::new(0.02, 0.1).forward_nhc::<f64, 16, _>(&layout, &ins,
     ///     &OdometerReading::new(0.0, 10.0), 0.0);
     /// assert!((m.noise_covariance()[(1, 1)] - 0.01).abs() < 1e-15);

@@ -5,7 +5,7 @@ use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 use crate::earth::Ellipsoid;
 use crate::engine::{ErrorSystem, InitialUncertainty, Ins15};
-use crate::error_model::{ErrorModel15, ErrorStateModel, ForcingMean};
+use crate::error_model::{ErrorStateModel, ForcingMean, Ins15Model};
 use crate::imu_spec::ImuSpec;
 use crate::measurement::ErrorLayout;
 use crate::state::NavState;
@@ -17,7 +17,7 @@ pub const ODOMETER_SCALE: usize = 15;
 /// `δk̇ = −δk / τ + w`, `E[w²] = 2σ²/τ`, with an initial standard deviation.
 ///
 /// ```
-/// let p = kestrel_nav::odometer::ScaleFactorProcess::paper003();
+/// let p = kestrel_nav::odometer::ScaleFactorProcess::as_published();
 /// assert_eq!(p.tau, 3600.0);
 /// assert_eq!(p.initial_std, 0.005);
 /// ```
@@ -47,17 +47,20 @@ impl ScaleFactorProcess {
         }
     }
 
-    /// Paper 003: τ = 3600 s, the 0.5 % constant error as the initial σ and
+    /// The published model (Xu, Zhou and Wang, *Application of Fuzzy Adaptive
+    /// Kalman Filtering Algorithm in SINS/DR Integrated Navigation*,
+    /// Ordnance Industry Automation, 2024; paper 003 in
+    /// `crates/core/REFERENCES.md`): τ = 3600 s, the 0.5 % constant error as the initial σ and
     /// the 0.05 % random error as the steady-state σ. (A steady-state σ as
     /// large as the constant part would let the estimate wander along the
     /// direction the odometer cannot tell from an along-track INS velocity
     /// error on long straight legs.)
     ///
     /// ```
-    /// let p = kestrel_nav::odometer::ScaleFactorProcess::paper003();
+    /// let p = kestrel_nav::odometer::ScaleFactorProcess::as_published();
     /// assert_eq!((p.sigma, p.initial_std), (0.0005, 0.005));
     /// ```
-    pub fn paper003() -> Self {
+    pub fn as_published() -> Self {
         Self::new(3600.0, 0.0005, 0.005)
     }
 }
@@ -72,7 +75,7 @@ impl ScaleFactorProcess {
 /// use kestrel_nav::{Ellipsoid, Euler, Geodetic, ImuSpec, NavState, nalgebra::{Matrix3, Vector3}};
 /// use kestrel_nav::error_model::ForcingMean;
 /// use kestrel_nav::odometer::{InsOdometer16, ScaleFactorProcess, ODOMETER_SCALE};
-/// let sys = InsOdometer16::new(ImuSpec::perfect(), ScaleFactorProcess::paper003());
+/// let sys = InsOdometer16::new(ImuSpec::perfect(), ScaleFactorProcess::as_published());
 /// let nav = NavState::new(0.0, Geodetic::from_degrees(34.0, 120.0, 200.0), Vector3::zeros(),
 ///     Euler::default());
 /// let model = sys.model(&Ellipsoid::wgs84(), &nav, &Matrix3::identity(), &Vector3::zeros(), 1.0);
@@ -91,7 +94,7 @@ impl InsOdometer16 {
     ///
     /// ```
     /// use kestrel_nav::odometer::{InsOdometer16, ScaleFactorProcess};
-    /// let s = InsOdometer16::new(kestrel_nav::ImuSpec::perfect(), ScaleFactorProcess::paper003());
+    /// let s = InsOdometer16::new(kestrel_nav::ImuSpec::perfect(), ScaleFactorProcess::as_published());
     /// assert_eq!(s.scale.tau, 3600.0);
     /// ```
     pub fn new(spec: ImuSpec, scale: ScaleFactorProcess) -> Self {
@@ -105,7 +108,7 @@ impl InsOdometer16 {
     /// use kestrel_nav::{Ellipsoid, Euler, Geodetic, ImuSpec, NavState};
     /// use kestrel_nav::nalgebra::{Matrix3, Vector3};
     /// use kestrel_nav::odometer::{InsOdometer16, ScaleFactorProcess, ODOMETER_SCALE};
-    /// let sys = InsOdometer16::new(ImuSpec::perfect(), ScaleFactorProcess::paper003());
+    /// let sys = InsOdometer16::new(ImuSpec::perfect(), ScaleFactorProcess::as_published());
     /// let nav = NavState::new(0.0, Geodetic::new(0.6, 2.1, 0.0), Vector3::zeros(), Euler::default());
     /// let m = sys.model(&Ellipsoid::wgs84(), &nav, &Matrix3::identity(), &Vector3::zeros(), 36.0);
     /// let k = ODOMETER_SCALE;
@@ -122,7 +125,7 @@ impl InsOdometer16 {
         f_ned: &Vector3<f64>,
         dt: f64,
     ) -> ErrorStateModel<16> {
-        let (f15, q15) = ErrorModel15::continuous_with(earth, &self.spec, nav, c_bn, f_ned);
+        let (f15, q15) = Ins15Model::continuous_with(earth, &self.spec, nav, c_bn, f_ned);
         let mut f = SMatrix::<f64, 16, 16>::zeros();
         f.fixed_view_mut::<15, 15>(0, 0).copy_from(&f15);
         let mut q = SVector::<f64, 16>::zeros();

@@ -35,13 +35,13 @@ pub type FuzzyAdapter<T, const W: usize> = (FuzzyGain<T, 3>, WindowedNoise<T, 3,
 ///
 /// let nav = NavState::new(0.0, Geodetic::from_degrees(34.0, 120.0, 200.0),
 ///     Vector3::new(0.0, 20.0, 0.0), Euler::from_degrees(0.0, 0.0, 90.0));
-/// let system = InsOdometer16::new(ImuSpec::perfect(), ScaleFactorProcess::paper003());
+/// let system = InsOdometer16::new(ImuSpec::perfect(), ScaleFactorProcess::as_published());
 /// let p0 = system.initial_covariance(&InitialUncertainty::new(1e-3, 0.05, 0.1));
 /// let mut engine = LooselyCoupled::new(Strapdown::new(Ellipsoid::wgs84(), nav),
 ///     Ekf::<f64, 16>::new(SVector::zeros(), p0).unwrap(), system,
 ///     GnssAntenna::new(Vector3::zeros()), 0.1);
 /// let odometer = Odometer::new(0.1, 0.1);
-/// let mut fuzzy = FuzzyOdometer::<f64, 20>::paper003().unwrap();
+/// let mut fuzzy = FuzzyOdometer::<f64, 20>::as_published().unwrap();
 /// // Wheel spin: the odometer reads 1.5 × the speed.
 /// let reading = OdometerReading::new(0.0, 30.0);
 /// let m = engine.odometer_measurement(&odometer, &reading);
@@ -59,7 +59,8 @@ impl<T: Real, const W: usize> FuzzyOdometer<T, W> {
     /// Speeds below this (m/s) count as standstill for `dm₁`.
     pub const DEFAULT_MIN_SPEED: f64 = 0.5;
 
-    /// The paper's processing: the rule base of [`odometer_engine`]
+    /// The published processing (Xu, Zhou and Wang, 2024; paper 003 in
+    /// `crates/core/REFERENCES.md`): the rule base of [`odometer_engine`]
     /// (odometer unusable when `α₁` is tiny or large), innovation-mean
     /// smoothing 0.5, `R` from the last `W` corrected innovations with an
     /// eigenvalue floor of (0.01 m/s)².
@@ -68,10 +69,10 @@ impl<T: Real, const W: usize> FuzzyOdometer<T, W> {
     /// `InvalidParameter` for `W = 0`.
     ///
     /// ```
-    /// let f = kestrel_nav::odometer::FuzzyOdometer::<f32, 20>::paper003().unwrap();
+    /// let f = kestrel_nav::odometer::FuzzyOdometer::<f32, 20>::as_published().unwrap();
     /// assert_eq!(f.adapter().1.len(), 0);
     /// ```
-    pub fn paper003() -> Result<Self, FilterError> {
+    pub fn as_published() -> Result<Self, FilterError> {
         Ok(Self::new(
             (
                 FuzzyGain::new(
@@ -101,7 +102,7 @@ impl<T: Real, const W: usize> FuzzyOdometer<T, W> {
     /// The standstill speed of `dm₁`, m/s.
     ///
     /// ```
-    /// let f = kestrel_nav::odometer::FuzzyOdometer::<f64, 20>::paper003().unwrap();
+    /// let f = kestrel_nav::odometer::FuzzyOdometer::<f64, 20>::as_published().unwrap();
     /// assert_eq!(f.min_speed(), 0.5);
     /// ```
     pub fn min_speed(&self) -> f64 {
@@ -111,7 +112,7 @@ impl<T: Real, const W: usize> FuzzyOdometer<T, W> {
     /// The adapter (its state: innovation mean, window).
     ///
     /// ```
-    /// let f = kestrel_nav::odometer::FuzzyOdometer::<f64, 20>::paper003().unwrap();
+    /// let f = kestrel_nav::odometer::FuzzyOdometer::<f64, 20>::as_published().unwrap();
     /// assert!(f.adapter().0.innovation_mean().is_none());
     /// ```
     pub fn adapter(&self) -> &FuzzyAdapter<T, W> {
@@ -130,7 +131,7 @@ impl<T: Real, const W: usize> FuzzyOdometer<T, W> {
     /// // Turning right at 10°/s.
     /// let rate = Ellipsoid::wgs84().earth_rate_ned(nav.pos.lat) + Vector3::z() * 10f64.to_radians();
     /// let ins = InsContext::new(Ellipsoid::wgs84(), nav, rate);
-    /// let f = FuzzyOdometer::<f64, 20>::paper003().unwrap();
+    /// let f = FuzzyOdometer::<f64, 20>::as_published().unwrap();
     /// let i = f.inputs(&ins, &OdometerReading::new(0.0, 25.0), 0.0);
     /// assert!((i.match_factor - 0.8).abs() < 1e-12);
     /// assert!((i.heading_rate - 10.0).abs() < 1e-9);
@@ -164,7 +165,7 @@ impl<T: Real, const W: usize> FuzzyOdometer<T, W> {
     /// let nav = NavState::new(0.0, Geodetic::new(0.6, 2.1, 0.0), Vector3::new(20.0, 0.0, 0.0),
     ///     Euler::default());
     /// let ins = InsContext::new(Ellipsoid::wgs84(), nav, Vector3::zeros());
-    /// let mut f = FuzzyOdometer::<f64, 20>::paper003().unwrap();
+    /// let mut f = FuzzyOdometer::<f64, 20>::as_published().unwrap();
     /// let adapter = f.prepare(&ins, &OdometerReading::new(0.0, 20.0), 0.0);
     /// assert_eq!(adapter.1.len(), 0);
     /// ```

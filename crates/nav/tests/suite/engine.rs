@@ -10,11 +10,11 @@ use kestrel_adaptive::{ChiSquareGate, HuberInflation};
 use kestrel_core::form::PredictForm;
 use kestrel_core::{Ekf, Filter, SrUkf};
 use kestrel_nav::engine::{Epoch, ErrorSystem, InitialUncertainty, Ins15, LooselyCoupled};
-use kestrel_nav::error_model::{ErrorModel15, ForcingMean};
+use kestrel_nav::error_model::{ForcingMean, Ins15Model};
 use kestrel_nav::measurement::{GnssAntenna, GnssFix, InsContext};
 use kestrel_nav::nalgebra::{SMatrix, SVector, Vector3};
 use kestrel_nav::{
-    feedback15, Ellipsoid, Geodetic, ImuBiases, ImuIncrement, ImuSpec, NavError, NavState,
+    feedback_ins15, Ellipsoid, Geodetic, ImuBiases, ImuIncrement, ImuSpec, NavError, NavState,
     Strapdown,
 };
 use kestrel_sim::{GnssConfig, GnssSensor, Segment, TimeWindow, TrajectorySpec, Vehicle};
@@ -49,7 +49,7 @@ fn engine<F, A>(
     seed: u64,
 ) -> LooselyCoupled<f64, 15, Ins15, F, A>
 where
-    F: kestrel_core::form::Form<f64, 15> + PredictForm<f64, 15, ErrorModel15>,
+    F: kestrel_core::form::Form<f64, 15> + PredictForm<f64, 15, Ins15Model>,
     A: kestrel_core::adapter::PriorAdapter<f64>,
 {
     let earth = Ellipsoid::wgs84();
@@ -245,7 +245,7 @@ fn same_result_as_a_hand_driven_filter_loop() {
     let mut nis = Vec::new();
     let propagate = |kf: &mut Ekf<f64, 15>, mean: &mut ForcingMean, ins: &Strapdown| {
         if mean.dt() > 0.0 {
-            let model = ErrorModel15::from_mean(&earth, &system.spec, ins.state(), mean);
+            let model = Ins15Model::from_mean(&earth, &system.spec, ins.state(), mean);
             kf.predict(&model, mean.dt()).unwrap();
             mean.clear();
         }
@@ -258,7 +258,7 @@ fn same_result_as_a_hand_driven_filter_loop() {
             let m = antenna.position_velocity::<f64, 15, _>(&system, &ctx, fix);
             nis.push(kf.update(&m, &m.z()).unwrap().nis);
             let dx = *kf.state();
-            feedback15(&earth, ins.state_mut(), &mut biases, &dx);
+            feedback_ins15(&earth, ins.state_mut(), &mut biases, &dx);
             kf.set_state(SVector::zeros()).unwrap();
         }
         let imu = biases.compensate(raw);

@@ -101,7 +101,7 @@ fn gnss_engine_steps_do_not_allocate() {
 #[test]
 fn odometer_engine_steps_do_not_allocate() {
     let earth = Ellipsoid::wgs84();
-    let system = InsOdometer16::new(spec(), ScaleFactorProcess::paper003());
+    let system = InsOdometer16::new(spec(), ScaleFactorProcess::as_published());
     let p0 = system.initial_covariance(&InitialUncertainty::new(0.01, 0.1, 2.0));
     let mut engine = LooselyCoupled::new(
         Strapdown::new(earth, start()),

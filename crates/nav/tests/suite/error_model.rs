@@ -7,7 +7,7 @@ use crate::common_ins;
 
 use common_ins::stationary_increment;
 use kestrel_core::{Ekf, LinearizedProcess};
-use kestrel_nav::error_model::{eighteen, fifteen, ErrorModel15, ErrorModel18, ForcingMean};
+use kestrel_nav::error_model::{ins15, ins18, ForcingMean, Ins15Model, Ins18Model};
 use kestrel_nav::nalgebra::{SMatrix, SVector, Vector3};
 use kestrel_nav::{
     Ellipsoid, Euler, Geodetic, ImuIncrement, ImuSpec, NavError, NavState, Strapdown,
@@ -130,7 +130,7 @@ fn block_errors(truth: &SVector<f64, 9>, pred: &SVector<f64, 9>) -> [f64; 3] {
 }
 
 fn model15(nav: &NavState, mean: &ForcingMean) -> SMatrix<f64, 15, 15> {
-    let m = ErrorModel15::from_mean(&Ellipsoid::wgs84(), &ImuSpec::perfect(), nav, mean);
+    let m = Ins15Model::from_mean(&Ellipsoid::wgs84(), &ImuSpec::perfect(), nav, mean);
     LinearizedProcess::<f64, 15>::transition(&m, &SVector::zeros(), mean.dt())
 }
 
@@ -140,8 +140,8 @@ fn constant(v: Vector3<f64>) -> Box<dyn Fn(f64) -> Vector3<f64>> {
 
 fn check15(name: &str, motion: Motion, dx0: SVector<f64, 15>) {
     let errors = SensorErrors {
-        gyro: constant(dx0.fixed_rows::<3>(fifteen::GYRO_BIAS).into()),
-        accel: constant(dx0.fixed_rows::<3>(fifteen::ACCEL_BIAS).into()),
+        gyro: constant(dx0.fixed_rows::<3>(ins15::GYRO_BIAS).into()),
+        accel: constant(dx0.fixed_rows::<3>(ins15::ACCEL_BIAS).into()),
         gyro_scale: Vector3::zeros(),
         accel_scale: Vector3::zeros(),
     };
@@ -168,11 +168,11 @@ fn injected(i: usize, v: [f64; 3]) -> SVector<f64, 15> {
 }
 
 fn cases() -> Vec<(&'static str, SVector<f64, 15>)> {
-    let att = injected(fifteen::ATT, [1e-3, -1e-3, 2e-3]);
-    let vel = injected(fifteen::VEL, [0.1, -0.1, 0.05]);
-    let pos = injected(fifteen::POS, [10.0, -10.0, 5.0]);
-    let gyro = injected(fifteen::GYRO_BIAS, [1e-5, -1e-5, 2e-5]);
-    let accel = injected(fifteen::ACCEL_BIAS, [1e-3, -1e-3, 2e-3]);
+    let att = injected(ins15::ATT, [1e-3, -1e-3, 2e-3]);
+    let vel = injected(ins15::VEL, [0.1, -0.1, 0.05]);
+    let pos = injected(ins15::POS, [10.0, -10.0, 5.0]);
+    let gyro = injected(ins15::GYRO_BIAS, [1e-5, -1e-5, 2e-5]);
+    let accel = injected(ins15::ACCEL_BIAS, [1e-3, -1e-3, 2e-3]);
     vec![
         ("attitude", att),
         ("velocity", vel),
@@ -222,12 +222,10 @@ fn eighteen_state_markov_drift() {
     let eps_c = Vector3::new(5e-6, -5e-6, 1e-5);
     let eps_r = Vector3::new(-2e-5, 1e-5, 3e-5);
     let nabla = Vector3::new(1e-3, 2e-3, -1e-3);
-    dx0.fixed_rows_mut::<3>(eighteen::GYRO_CONST)
-        .copy_from(&eps_c);
-    dx0.fixed_rows_mut::<3>(eighteen::GYRO_MARKOV)
+    dx0.fixed_rows_mut::<3>(ins18::GYRO_CONST).copy_from(&eps_c);
+    dx0.fixed_rows_mut::<3>(ins18::GYRO_MARKOV)
         .copy_from(&eps_r);
-    dx0.fixed_rows_mut::<3>(eighteen::ACCEL_BIAS)
-        .copy_from(&nabla);
+    dx0.fixed_rows_mut::<3>(ins18::ACCEL_BIAS).copy_from(&nabla);
     dx0[0] = 5e-4;
     dx0[4] = 0.05;
     let errors = SensorErrors {
@@ -237,7 +235,7 @@ fn eighteen_state_markov_drift() {
         accel_scale: Vector3::zeros(),
     };
     let model = |nav: &NavState, mean: &ForcingMean| {
-        *ErrorModel18::from_mean(&Ellipsoid::wgs84(), &spec, nav, mean).phi()
+        *Ins18Model::from_mean(&Ellipsoid::wgs84(), &spec, nav, mean).phi()
     };
     for motion in [Motion::Stationary, Motion::Manoeuvring] {
         let (truth, pred) = compare(motion, dx0, &errors, model);
@@ -258,19 +256,17 @@ fn eighteen_state_markov_drift() {
 /// turns, so the check can fail.
 #[test]
 fn twenty_one_state_scale_factors() {
-    use kestrel_nav::error_model::{twentyone, ErrorModel21};
+    use kestrel_nav::error_model::{ins21, Ins21Model};
     let gyro_scale = Vector3::new(400.0e-6, -300.0e-6, 500.0e-6);
     let accel_scale = Vector3::new(300.0e-6, 200.0e-6, -400.0e-6);
     let gyro = Vector3::new(5e-6, -5e-6, 1e-5);
     let accel = Vector3::new(5e-4, -5e-4, 1e-3);
     let mut dx0 = SVector::<f64, 21>::zeros();
-    dx0.fixed_rows_mut::<3>(twentyone::GYRO_BIAS)
-        .copy_from(&gyro);
-    dx0.fixed_rows_mut::<3>(twentyone::ACCEL_BIAS)
-        .copy_from(&accel);
-    dx0.fixed_rows_mut::<3>(twentyone::GYRO_SCALE)
+    dx0.fixed_rows_mut::<3>(ins21::GYRO_BIAS).copy_from(&gyro);
+    dx0.fixed_rows_mut::<3>(ins21::ACCEL_BIAS).copy_from(&accel);
+    dx0.fixed_rows_mut::<3>(ins21::GYRO_SCALE)
         .copy_from(&gyro_scale);
-    dx0.fixed_rows_mut::<3>(twentyone::ACCEL_SCALE)
+    dx0.fixed_rows_mut::<3>(ins21::ACCEL_SCALE)
         .copy_from(&accel_scale);
     dx0[0] = 5e-4;
     dx0[4] = 0.05;
@@ -282,7 +278,7 @@ fn twenty_one_state_scale_factors() {
     };
     let model = |nav: &NavState, mean: &ForcingMean| {
         let spec = ImuSpec::perfect();
-        *ErrorModel21::from_mean_scaled(&Ellipsoid::wgs84(), &spec, f64::INFINITY, nav, mean).phi()
+        *Ins21Model::from_mean_scaled(&Ellipsoid::wgs84(), &spec, f64::INFINITY, nav, mean).phi()
     };
     for motion in [Motion::Stationary, Motion::Manoeuvring] {
         let (truth, pred) = compare(motion, dx0, &errors(), model);
@@ -314,7 +310,7 @@ fn f32_filter_predicts_like_f64() {
         .with_gyro_arw_deg_per_sqrt_h(0.1)
         .with_accel_vrw_m_s_per_sqrt_h(0.05)
         .with_gyro_markov_deg_per_h(1.0, 3600.0);
-    let m = ErrorModel15::new(&earth, &spec, &nav, &Vector3::new(0.5, 0.1, -9.8), 0.1);
+    let m = Ins15Model::new(&earth, &spec, &nav, &Vector3::new(0.5, 0.1, -9.8), 0.1);
     let mut p0 = SMatrix::<f64, 15, 15>::identity();
     for i in 0..3 {
         p0[(i, i)] = 1e-4;
@@ -344,13 +340,13 @@ fn random_walk_biases() {
         .with_accel_bias_rw_ug_per_sqrt_h(30.0);
     let nav = start(Motion::Stationary);
     let earth = Ellipsoid::wgs84();
-    let (f, q) = ErrorModel15::continuous(&earth, &spec, &nav, &Vector3::new(0.0, 0.0, -9.8));
-    let (g, a) = (fifteen::GYRO_BIAS, fifteen::ACCEL_BIAS);
+    let (f, q) = Ins15Model::continuous(&earth, &spec, &nav, &Vector3::new(0.0, 0.0, -9.8));
+    let (g, a) = (ins15::GYRO_BIAS, ins15::ACCEL_BIAS);
     assert_eq!((f[(g, g)], f[(a, a)]), (0.0, 0.0));
     assert_eq!(q[g], spec.gyro_bias_rw.powi(2));
     assert_eq!(q[a + 2], spec.accel_bias_rw.powi(2));
     // 6 °/h/√h over 100 s: σ = 6 °/h × √(100 / 3600) = 1 °/h.
-    let m = ErrorModel15::new(&earth, &spec, &nav, &Vector3::new(0.0, 0.0, -9.8), 100.0);
+    let m = Ins15Model::new(&earth, &spec, &nav, &Vector3::new(0.0, 0.0, -9.8), 100.0);
     let sigma = m.qd()[(g, g)].sqrt().to_degrees() * 3600.0;
     assert!((sigma - 1.0).abs() < 1e-9, "{sigma}");
 }

@@ -288,7 +288,7 @@ fn odometer_models_match_differences() {
     let odo = Odometer::new(0.05, 0.1)
         .with_mounting(0.01, -0.02)
         .with_lever_arm(Vector3::new(-1.2, 0.4, 1.1));
-    let sys = InsOdometer16::new(ImuSpec::perfect(), ScaleFactorProcess::paper003());
+    let sys = InsOdometer16::new(ImuSpec::perfect(), ScaleFactorProcess::as_published());
     let k = 0.013;
     // The true vehicle-frame velocity of the odometer point relative to
     // the Earth: C_b^v (Cᵀ v + ω_eb × l), ω_eb = ω_ib − Cᵀ ω_ie.

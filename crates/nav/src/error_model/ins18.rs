@@ -27,17 +27,17 @@ pub const ACCEL_BIAS: usize = 15;
 ///
 /// ```
 /// use kestrel_nav::{Ellipsoid, Euler, Geodetic, ImuSpec, NavState, nalgebra::Vector3};
-/// use kestrel_nav::error_model::{ErrorModel18, eighteen::GYRO_MARKOV};
+/// use kestrel_nav::error_model::{Ins18Model, ins18::GYRO_MARKOV};
 /// let nav = NavState::new(0.0, Geodetic::from_degrees(40.1, 118.6, 100.0), Vector3::zeros(),
 ///     Euler::default());
 /// let spec = ImuSpec::perfect().with_gyro_markov_deg_per_h(0.005, 3600.0);
-/// let m = ErrorModel18::new(&Ellipsoid::krasovsky(), &spec, &nav, &Vector3::zeros(), 1.0);
+/// let m = Ins18Model::new(&Ellipsoid::krasovsky(), &spec, &nav, &Vector3::zeros(), 1.0);
 /// let k = GYRO_MARKOV;
 /// assert!((m.f()[(k, k)] + 1.0 / 3600.0).abs() < 1e-18);
 /// ```
-pub type ErrorModel18 = ErrorStateModel<18>;
+pub type Ins18Model = ErrorStateModel<18>;
 
-impl InertialLayout for ErrorModel18 {
+impl InertialLayout for Ins18Model {
     const GYRO_BIAS: usize = GYRO_MARKOV;
     const GYRO_CONST: Option<usize> = Some(GYRO_CONST);
     const ACCEL_BIAS: usize = ACCEL_BIAS;

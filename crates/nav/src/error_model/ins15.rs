@@ -20,16 +20,16 @@ pub const ACCEL_BIAS: usize = 12;
 ///
 /// ```
 /// use kestrel_nav::{Ellipsoid, Euler, Geodetic, ImuSpec, NavState, nalgebra::Vector3};
-/// use kestrel_nav::error_model::{ErrorModel15, fifteen::{ACCEL_BIAS, GYRO_BIAS}};
+/// use kestrel_nav::error_model::{Ins15Model, ins15::{ACCEL_BIAS, GYRO_BIAS}};
 /// let nav = NavState::new(0.0, Geodetic::new(0.5, 0.0, 0.0), Vector3::zeros(), Euler::default());
 /// let spec = ImuSpec::perfect().with_gyro_markov_deg_per_h(0.005, 3600.0);
-/// let (f, _) = ErrorModel15::continuous(&Ellipsoid::wgs84(), &spec, &nav, &Vector3::zeros());
+/// let (f, _) = Ins15Model::continuous(&Ellipsoid::wgs84(), &spec, &nav, &Vector3::zeros());
 /// assert!((f[(GYRO_BIAS, GYRO_BIAS)] + 1.0 / 3600.0).abs() < 1e-18);
 /// assert_eq!(f[(ACCEL_BIAS, ACCEL_BIAS)], 0.0);
 /// ```
-pub type ErrorModel15 = ErrorStateModel<15>;
+pub type Ins15Model = ErrorStateModel<15>;
 
-impl InertialLayout for ErrorModel15 {
+impl InertialLayout for Ins15Model {
     const GYRO_BIAS: usize = GYRO_BIAS;
     const GYRO_CONST: Option<usize> = None;
     const ACCEL_BIAS: usize = ACCEL_BIAS;

@@ -35,7 +35,7 @@ pub const ACCEL_SCALE: usize = 18;
 /// δv̇ = … + C_b^n (b_a + diag(f^b) s_a)
 /// ```
 ///
-/// The biases are as in [`ErrorModel15`](super::ErrorModel15) (Gauss-Markov
+/// The biases are as in [`Ins15Model`](super::Ins15Model) (Gauss-Markov
 /// when the spec has one, else random constants). The scale factors are
 /// random constants for an infinite `scale_tau`, otherwise first-order
 /// Gauss-Markov processes with correlation time `scale_tau` and
@@ -46,28 +46,28 @@ pub const ACCEL_SCALE: usize = 18;
 ///
 /// ```
 /// use kestrel_nav::{Ellipsoid, Euler, Geodetic, ImuSpec, NavState, nalgebra::{Matrix3, Vector3}};
-/// use kestrel_nav::error_model::{ErrorModel21, twentyone::{ACCEL_SCALE, GYRO_SCALE}};
+/// use kestrel_nav::error_model::{Ins21Model, ins21::{ACCEL_SCALE, GYRO_SCALE}};
 /// let nav = NavState::new(0.0, Geodetic::new(0.5, 0.0, 0.0), Vector3::zeros(), Euler::default());
 /// let spec = ImuSpec::perfect().with_gyro_scale_ppm(300.0);
 /// // Turning at 0.1 rad/s about down, with gravity on the accelerometers.
 /// let gw = Matrix3::from_diagonal(&Vector3::new(0.0, 0.0, 0.1));
 /// let gf = Matrix3::from_diagonal(&Vector3::new(0.0, 0.0, -9.8));
-/// let (f, q) = ErrorModel21::continuous_scaled(&Ellipsoid::wgs84(), &spec, 3600.0, &nav,
+/// let (f, q) = Ins21Model::continuous_scaled(&Ellipsoid::wgs84(), &spec, 3600.0, &nav,
 ///     &Matrix3::identity(), &Vector3::new(0.0, 0.0, -9.8), &gw, &gf);
 /// assert_eq!(f[(2, GYRO_SCALE + 2)], -0.1);   // yaw error from the z scale factor
 /// assert_eq!(f[(5, ACCEL_SCALE + 2)], -9.8);  // down velocity from the z accel scale
 /// assert_eq!(f[(GYRO_SCALE, GYRO_SCALE)], -1.0 / 3600.0);
 /// assert!((q[GYRO_SCALE] - 2.0 * (300e-6f64).powi(2) / 3600.0).abs() < 1e-20);
 /// ```
-pub type ErrorModel21 = ErrorStateModel<21>;
+pub type Ins21Model = ErrorStateModel<21>;
 
-impl InertialLayout for ErrorModel21 {
+impl InertialLayout for Ins21Model {
     const GYRO_BIAS: usize = GYRO_BIAS;
     const GYRO_CONST: Option<usize> = None;
     const ACCEL_BIAS: usize = ACCEL_BIAS;
 }
 
-impl ErrorModel21 {
+impl Ins21Model {
     /// The model over the interval `mean` summarises, at the solution `nav`
     /// (its end), with scale-factor correlation time `scale_tau` (s;
     /// infinite: random constants).
