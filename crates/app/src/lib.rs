@@ -3,19 +3,23 @@
 //! The kestrel application: what the command line (and any other front
 //! end) runs, as library calls that take options and return results.
 //!
+//! - [`config`]: the one configuration model: the `process` configuration
+//!   ([`config::process`]) and the scenario file format
+//!   ([`config::scenario`]), read and written through the same types,
+//!   units and checks.
 //! - [`process`]: recorded IMU / GNSS (/ odometer) logs through the
-//!   loosely coupled engine: configuration ([`process::config`]),
-//!   alignment, the streaming pipeline, the RTS smoothing pass, the
-//!   evaluation against a reference (errors, drift per outage, NEES).
+//!   loosely coupled engine: alignment, the streaming pipeline, the RTS
+//!   smoothing pass, the evaluation against a reference (errors, drift per
+//!   outage, NEES).
 //! - [`scenario`]: the papers' experiments as data (the built-in scenarios,
-//!   the tuned baselines, the sensitivity study's variants);
-//!   [`scenario_file`]: the scenario file format, read and written.
+//!   the tuned baselines, the sensitivity study's variants).
 //! - [`experiment`]: running a scenario's filters on its simulation.
 //! - [`reproduce`]: Monte Carlo runs of a scenario's filters, the
 //!   consistency check, the sensitivity study, tables beside the papers'.
 //! - [`simulate`]: a scenario's sensors written as log files;
 //!   [`import`]: other tools' configurations (KF-GINS) as `process` ones;
-//!   [`output`]: the per-epoch error CSV.
+//!   [`output`]: the per-epoch error CSV; [`demo`]: the radar tracking demo;
+//!   [`progress`]: how a long call reports its progress.
 //!
 //! Processing a log takes a few lines (the files are those of
 //! `examples/data`, 5 s of a simulated drive):
