@@ -124,6 +124,42 @@ pub(crate) fn quantity(
     Ok(Some(v.map(unit.to_si)))
 }
 
+/// A standard deviation given in one of `given`'s units (or absent:
+/// `None`): `> 0` (or 0 when `zero_is_none`) with a variance in SI units
+/// that is a normal double, so it neither underflows to 0 nor overflows.
+pub(crate) fn sigma(
+    prefix: &str,
+    stem: &str,
+    given: &[(&Unit, Option<V3>)],
+    zero_is_none: bool,
+) -> Res<Option<Vector3<f64>>> {
+    let Some(si) = quantity(prefix, stem, given, Range::Any)? else {
+        return Ok(None);
+    };
+    let Some(&(unit, Some(raw))) = given.iter().find(|(_, v)| v.is_some()) else {
+        return Ok(Some(si));
+    };
+    for i in 0..3 {
+        let (x, s) = (raw.0[i], si[i]);
+        if !((zero_is_none && x == 0.0) || (x > 0.0 && (s * s).is_normal())) {
+            let what = if zero_is_none {
+                "0 (none) or a standard deviation"
+            } else {
+                "a standard deviation"
+            };
+            return Err(bad(
+                format!("{}[{i}]", join(prefix, unit.key(stem))),
+                format!(
+                    "expected {what} > 0 whose square in SI units is a normal double \
+                     (neither 0 nor infinite), found {}",
+                    kestrel_io::gins::physical::show(x)
+                ),
+            ));
+        }
+    }
+    Ok(Some(si))
+}
+
 /// [`quantity`] for a single number.
 pub(crate) fn scalar_quantity(
     prefix: &str,

@@ -19,6 +19,7 @@ pub(crate) mod check;
 pub mod filter;
 pub(crate) mod locate;
 pub mod names;
+pub(crate) mod p0;
 pub mod process;
 pub(crate) mod read;
 pub mod scenario;

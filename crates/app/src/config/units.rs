@@ -20,7 +20,7 @@ use kestrel::nav::ImuSpec;
 
 /// A unit: the key suffix that names it in files and the conversions to
 /// and from SI.
-#[derive(Debug)]
+#[derive(Clone, Copy, Debug)]
 pub struct Unit {
     /// Key suffix, e.g. `deg_per_h` (empty for the SI unit).
     pub suffix: &'static str,
@@ -31,6 +31,14 @@ pub struct Unit {
 }
 
 impl Unit {
+    /// The same unit named by the bare key (no suffix): the `process`
+    /// configuration's keys state their unit in the documentation
+    /// (`initial.std.attitude` in degrees) where scenario files name it
+    /// (`attitude_deg`); both spellings read through the same table.
+    pub const fn bare(self) -> Self {
+        Self { suffix: "", ..self }
+    }
+
     /// `x` in this unit, in SI.
     pub fn si(&self, x: f64) -> f64 {
         (self.to_si)(x)

@@ -50,3 +50,15 @@ impl<'de> Visitor<'de> for V3Visitor {
         Ok(V3(out))
     }
 }
+
+impl serde::Serialize for V3 {
+    /// One number when the three are equal, else the array.
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let [x, y, z] = self.0;
+        if x.to_bits() == y.to_bits() && y.to_bits() == z.to_bits() {
+            s.serialize_f64(x)
+        } else {
+            self.0.serialize(s)
+        }
+    }
+}

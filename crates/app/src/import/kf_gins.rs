@@ -10,9 +10,10 @@ use super::Imported;
 use crate::config::filter::Keys;
 use crate::config::names::{EarthName, ErrorModelName};
 use crate::config::process::schema::{
-    Exact, File, Filter, Gnss, Imu, ImuColumns, ImuFile, Initial, InitialStd, Output,
+    Exact, File, Filter, Gnss, Imu, ImuColumns, ImuFile, Initial, Output, P0Table,
 };
 use crate::config::units::{DEG_PER_H, UG};
+use crate::config::vec3::V3;
 use crate::config::write::commented_toml;
 use crate::{Error, InputError};
 
@@ -254,16 +255,13 @@ fn initial(r: &Reader<'_>, noise: &Reader<'_>, c: &mut Comments) -> Result<Initi
         accel_bias: None,
         gyro_scale: None,
         accel_scale: None,
-        std: InitialStd {
-            attitude: Exact(r.vec3("initattstd")?),
-            velocity: Exact(r.vec3("initvelstd")?),
-            position: Exact(r.vec3("initposstd")?),
-            gyro_bias: Exact(bg),
-            gyro_markov: Exact::default(),
-            accel_bias: Exact(ba.map(ug_of)),
-            odometer_scale: 0.0,
-            gyro_scale: Exact::default(),
-            accel_scale: Exact::default(),
+        std: P0Table {
+            attitude: Some(V3(r.vec3("initattstd")?)),
+            velocity: Some(V3(r.vec3("initvelstd")?)),
+            position: Some(V3(r.vec3("initposstd")?)),
+            gyro_bias: Some(V3(bg)),
+            accel_bias: Some(V3(ba.map(ug_of))),
+            ..P0Table::default()
         },
     })
 }

@@ -8,13 +8,20 @@ use kestrel::nav::NavState;
 use crate::config::filter::Keys;
 use crate::config::names::{EarthName, ErrorModelName};
 use crate::config::process::schema::{
-    Exact, File, Filter, Gnss, GnssNoiseSource, Imu, Initial, InitialStd, Odometer, Output, V3,
+    Exact, File, Filter, Gnss, GnssNoiseSource, Imu, Initial, Odometer, Output, P0Table, V3,
 };
 use crate::config::units::{Unit, DEG_PER_H, DEG_PER_SQRT_H, M_S_PER_SQRT_H, PPM, UG};
+use crate::config::vec3::V3 as ConfigV3;
 use crate::config::write::commented_toml;
 use crate::experiment::PositionAxes;
 use crate::scenario::{ErrorModelKind, FilterKind, FilterSetup, InitialUncertainty, Scenario};
 use kestrel_io::gins::degrees_exact;
+
+/// Three numbers as a table value (written as one number when they are
+/// equal).
+fn one_or_three(v: [f64; 3]) -> ConfigV3 {
+    ConfigV3(v)
+}
 
 /// `v` (SI) in `unit`, each value the one that converts back exactly.
 fn v3(v: &Vector3<f64>, unit: &Unit) -> V3 {
@@ -119,24 +126,19 @@ fn initial(start: &NavState, p: &InitialUncertainty, fs: &FilterSetup) -> Initia
         accel_bias: None,
         gyro_scale: None,
         accel_scale: None,
-        std: InitialStd {
-            attitude: Exact([p.attitude.x, p.attitude.y, p.attitude.z].map(degrees_exact)),
-            velocity: Exact(p.velocity.into()),
-            position: Exact(p.position.into()),
-            gyro_bias: v3(&p.gyro_bias, &DEG_PER_H),
-            gyro_markov: v3(&p.gyro_markov, &DEG_PER_H),
-            accel_bias: v3(&p.accel_bias, &UG),
-            odometer_scale: p.odometer_scale,
-            gyro_scale: if ins21 {
-                v3(&p.gyro_scale, &PPM)
-            } else {
-                Exact::default()
-            },
-            accel_scale: if ins21 {
-                v3(&p.accel_scale, &PPM)
-            } else {
-                Exact::default()
-            },
+        std: P0Table {
+            attitude: Some(one_or_three(
+                [p.attitude.x, p.attitude.y, p.attitude.z].map(degrees_exact),
+            )),
+            velocity: Some(one_or_three(p.velocity.into())),
+            position: Some(one_or_three(p.position.into())),
+            gyro_bias: Some(one_or_three(v3(&p.gyro_bias, &DEG_PER_H).0)),
+            gyro_markov: Some(one_or_three(v3(&p.gyro_markov, &DEG_PER_H).0)),
+            accel_bias: Some(one_or_three(v3(&p.accel_bias, &UG).0)),
+            odometer_scale: Some(p.odometer_scale),
+            gyro_scale: ins21.then(|| one_or_three(v3(&p.gyro_scale, &PPM).0)),
+            accel_scale: ins21.then(|| one_or_three(v3(&p.accel_scale, &PPM).0)),
+            ..P0Table::default()
         },
     }
 }

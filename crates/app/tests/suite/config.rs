@@ -263,3 +263,64 @@ fn max_threshold_takes_an_optional_r_window() {
         "p.toml:21:10: key `filter.window`: expected 10, 20 or 50, found 30"
     );
 }
+
+/// P0 is one table in both files: `[initial.std]` of a `process`
+/// configuration and `[filter.p0]` of a scenario file take the same keys
+/// (each quantity in any of its units, the bare key in the unit the
+/// `process` documentation states) and give the same SI values, and both
+/// refuse a missing or zero attitude, velocity or position σ.
+#[test]
+fn the_initial_uncertainty_is_one_table_in_both_files() {
+    use kestrel_app::config::process::parse;
+    let process = |std: &str| {
+        parse(
+            &format!(
+                "[initial]\ntime = 0\nposition = [30, 114, 20]\nattitude = [0, 0, 0]\n\
+                 [initial.std]\n{std}"
+            ),
+            "p.toml".as_ref(),
+        )
+        .map(|s| s.p0)
+    };
+    let scenario = |p0: &str| {
+        let text = format!(
+            "[scenario]\nname = \"t\"\n[trajectory]\nvehicle = \"ground\"\n\
+             start_lat_deg = 30.0\nstart_lon_deg = 114.0\nstart_height_m = 0.0\n\
+             [[trajectory.segment]]\ntype = \"cruise\"\nduration_s = 10.0\n\
+             [imu]\nrate_hz = 100.0\n[gnss]\nrate_hz = 1.0\nposition_std_m = 3.0\n\
+             [filter]\nerror_model = \"ins15\"\nmeasurement = \"gnss-position-velocity\"\n\
+             [filter.r]\nposition_m = 3.0\nvelocity_m_s = 0.1\n[[filters]]\nkind = \"ekf\"\n\
+             [filter.p0]\n{p0}"
+        );
+        kestrel_app::config::scenario::parse(&text, "s.toml".as_ref()).map(|s| s.filter.p0)
+    };
+    // The bare keys and the unit-explicit ones, mixed, in both files.
+    let keys = "attitude_arcmin = [6.0, 6.0, 60.0]\nvelocity = 0.1\nposition_m = [1, 1, 2]\n\
+                gyro_bias = 10.0\naccel_bias_mg = 0.5\n";
+    let a = process(keys).unwrap();
+    let b = scenario(keys).unwrap();
+    assert_eq!(a, b);
+    assert_eq!(a.attitude.z, 1.0_f64.to_radians());
+    assert_eq!(
+        a.gyro_bias.x,
+        kestrel_app::config::units::DEG_PER_H.si(10.0)
+    );
+    // Missing or zero attitude, velocity or position σ: refused in both.
+    for bad in [
+        "velocity = 0.1\nposition = 1.0\n",
+        "attitude = 0.0\nvelocity = 0.1\nposition = 1.0\n",
+    ] {
+        let e = process(bad).unwrap_err().to_string();
+        assert!(e.contains("key `initial.std.attitude"), "{e}");
+        let e = scenario(bad).unwrap_err().to_string();
+        assert!(e.contains("key `filter.p0.attitude"), "{e}");
+    }
+    // One quantity in two units is refused with both keys named.
+    let e = process("attitude = 1.0\nattitude_deg = 1.0\nvelocity = 0.1\nposition = 1.0\n")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("give `attitude` or `attitude_deg`, not both"),
+        "{e}"
+    );
+}

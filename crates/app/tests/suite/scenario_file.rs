@@ -175,6 +175,11 @@ kind = "sage-husa-fading"
 forgetting = 0.97
 reserve = 3.0
 lambda_max = 1.5
+
+[filter.p0]
+attitude_deg = 0.1
+velocity_m_s = 0.1
+position_m = 3.0
 "#;
 
 /// The error message for `BASE` with `from` replaced by `to`.

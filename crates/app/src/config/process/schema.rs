@@ -5,6 +5,7 @@
 
 use super::*;
 use crate::config::names::{EarthName, ErrorModelName};
+pub(crate) use crate::config::p0::P0Table;
 use serde::Serialize;
 
 pub(crate) type V3 = Exact<3>;
@@ -32,13 +33,6 @@ impl<'de, const N: usize> Deserialize<'de> for Exact<N> {
         <[f64; N]>::try_from(v.as_slice())
             .map(Exact)
             .map_err(|_| serde::de::Error::invalid_length(v.len(), &Count(N)))
-    }
-}
-
-impl<const N: usize> Exact<N> {
-    /// Whether every number is zero (the default, left out when writing).
-    pub(crate) fn is_zero(&self) -> bool {
-        self.0.iter().all(|x| *x == 0.0)
     }
 }
 
@@ -181,27 +175,7 @@ pub(crate) struct Initial {
     pub(crate) gyro_scale: Option<V3>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub(crate) accel_scale: Option<V3>,
-    pub(crate) std: InitialStd,
-}
-
-#[derive(Debug, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub(crate) struct InitialStd {
-    pub(crate) attitude: V3,
-    pub(crate) velocity: V3,
-    pub(crate) position: V3,
-    #[serde(default)]
-    pub(crate) gyro_bias: V3,
-    #[serde(default, skip_serializing_if = "Exact::is_zero")]
-    pub(crate) gyro_markov: V3,
-    #[serde(default)]
-    pub(crate) accel_bias: V3,
-    #[serde(default)]
-    pub(crate) odometer_scale: f64,
-    #[serde(default, skip_serializing_if = "Exact::is_zero")]
-    pub(crate) gyro_scale: V3,
-    #[serde(default, skip_serializing_if = "Exact::is_zero")]
-    pub(crate) accel_scale: V3,
+    pub(crate) std: P0Table,
 }
 
 #[derive(Debug, Default, Deserialize, Serialize)]

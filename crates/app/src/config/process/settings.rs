@@ -139,22 +139,9 @@ impl Check<'_> {
         ))
     }
 
-    /// `[initial.std]`: P0 as standard deviations (attitude, velocity and
-    /// position required and positive, the sensor errors 0 for none).
-    fn p0(&self, s: &InitialStd) -> Result<InitialUncertainty, InputError> {
-        let key = |k: &str| format!("initial.std.{k}");
-        let (refused, absent) = (Zero::Refused, Zero::Absent);
-        Ok(InitialUncertainty {
-            attitude: self.sigmas(&key("attitude"), s.attitude, deg, refused)?,
-            velocity: self.sigmas(&key("velocity"), s.velocity, id, refused)?,
-            position: self.sigmas(&key("position"), s.position, id, refused)?,
-            gyro_bias: self.sigmas(&key("gyro_bias"), s.gyro_bias, deg_per_h, absent)?,
-            gyro_markov: self.sigmas(&key("gyro_markov"), s.gyro_markov, deg_per_h, absent)?,
-            accel_bias: self.sigmas(&key("accel_bias"), s.accel_bias, ug, absent)?,
-            odometer_scale: self.sigma(&key("odometer_scale"), s.odometer_scale, id, absent)?,
-            gyro_scale: self.sigmas(&key("gyro_scale"), s.gyro_scale, ppm, absent)?,
-            accel_scale: self.sigmas(&key("accel_scale"), s.accel_scale, ppm, absent)?,
-        })
+    /// `[initial.std]`: P0 as standard deviations ([`P0Table`]).
+    fn p0(&self, s: &P0Table) -> Result<InitialUncertainty, InputError> {
+        s.uncertainty("initial.std").map_err(|b| self.source.bad(b))
     }
 
     /// `[filter] error_model` with its scale factors' correlation time

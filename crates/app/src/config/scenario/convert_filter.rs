@@ -1,15 +1,13 @@
 //! `[filter]` and `[[filters]]` to the scenario's filter set-up and kinds.
 
-use crate::scenario::{
-    ErrorModelKind, FilterKind, FilterSetup, InitialUncertainty, MeasurementNoise,
-};
+use crate::scenario::{ErrorModelKind, FilterKind, FilterSetup, MeasurementNoise};
 use kestrel::nav::nalgebra::Vector3;
 
 use super::convert_sensors::imu_spec;
-use super::schema_filter::{ErrorModelName, FilterSection, P0Section, RSection};
-use crate::config::check::{bad, join, need, num, quantity, scalar_quantity, vec3, Range, Res};
+use super::schema_filter::{ErrorModelName, FilterSection, RSection};
+use crate::config::check::{bad, join, need, num, quantity, vec3, Range, Res};
 use crate::config::filter::{read_kind, Keys, Kinds};
-use crate::config::units::{ACCEL, ANGLE, GYRO_RATE, RATIO, SI};
+use crate::config::units::{ANGLE, SI};
 
 /// `[filter]`.
 pub(super) fn setup(f: &FilterSection) -> Res<FilterSetup> {
@@ -40,7 +38,7 @@ pub(super) fn setup(f: &FilterSection) -> Res<FilterSetup> {
     if !ins21 && f.scale_tau_s.is_some() {
         return Err(bad(scale_key, "applies only to error_model = \"ins21\""));
     }
-    let p0 = p0(&f.p0)?;
+    let p0 = f.p0.uncertainty("filter.p0")?;
     if !ins21 && (p0.gyro_scale != Vector3::zeros() || p0.accel_scale != Vector3::zeros()) {
         return Err(bad(
             "filter.p0.gyro_scale / accel_scale".to_owned(),
@@ -66,70 +64,6 @@ pub(super) fn setup(f: &FilterSection) -> Res<FilterSetup> {
             vec3(&join(p, "lever_arm_m"), l, Range::Any)
         })?,
         odometer_mounting: mounting,
-    })
-}
-
-fn p0(s: &P0Section) -> Res<InitialUncertainty> {
-    let p = "filter.p0";
-    let nn = Range::NonNegative;
-    let [deg, arcmin, arcsec] = ANGLE;
-    let [dph] = GYRO_RATE;
-    let [ug, mg] = ACCEL;
-    let [ppm, percent] = RATIO;
-    let z = |v: Option<Vector3<f64>>| v.unwrap_or_else(Vector3::zeros);
-    Ok(InitialUncertainty {
-        attitude: z(quantity(
-            p,
-            "attitude",
-            &[
-                (deg, s.attitude_deg),
-                (arcmin, s.attitude_arcmin),
-                (arcsec, s.attitude_arcsec),
-            ],
-            nn,
-        )?),
-        velocity: z(quantity(p, "velocity_m_s", &[(&SI, s.velocity_m_s)], nn)?),
-        position: z(quantity(p, "position_m", &[(&SI, s.position_m)], nn)?),
-        gyro_bias: z(quantity(
-            p,
-            "gyro_bias",
-            &[(dph, s.gyro_bias_deg_per_h)],
-            nn,
-        )?),
-        gyro_markov: z(quantity(
-            p,
-            "gyro_markov",
-            &[(dph, s.gyro_markov_deg_per_h)],
-            nn,
-        )?),
-        accel_bias: z(quantity(
-            p,
-            "accel_bias",
-            &[(ug, s.accel_bias_ug), (mg, s.accel_bias_mg)],
-            nn,
-        )?),
-        gyro_scale: z(quantity(
-            p,
-            "gyro_scale",
-            &[(ppm, s.gyro_scale_ppm), (percent, s.gyro_scale_percent)],
-            nn,
-        )?),
-        accel_scale: z(quantity(
-            p,
-            "accel_scale",
-            &[(ppm, s.accel_scale_ppm), (percent, s.accel_scale_percent)],
-            nn,
-        )?),
-        odometer_scale: scalar_quantity(
-            p,
-            "odometer_scale",
-            &[
-                (ppm, s.odometer_scale_ppm),
-                (percent, s.odometer_scale_percent),
-            ],
-            nn,
-        )?
-        .unwrap_or(0.0),
     })
 }
 

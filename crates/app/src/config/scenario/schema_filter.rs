@@ -4,6 +4,7 @@
 use serde::Deserialize;
 
 pub(super) use crate::config::names::ErrorModelName;
+use crate::config::p0::P0Table;
 use crate::scenario::MeasurementKind;
 
 use super::schema_sensors::ImuSection;
@@ -22,30 +23,9 @@ pub(super) struct FilterSection {
     #[serde(default)]
     pub imu: ImuSection,
     #[serde(default)]
-    pub p0: P0Section,
+    pub p0: P0Table,
     #[serde(default)]
     pub r: RSection,
-}
-
-/// `[filter.p0]`: initial standard deviations.
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct P0Section {
-    pub attitude_deg: Option<V3>,
-    pub attitude_arcmin: Option<V3>,
-    pub attitude_arcsec: Option<V3>,
-    pub velocity_m_s: Option<V3>,
-    pub position_m: Option<V3>,
-    pub gyro_bias_deg_per_h: Option<V3>,
-    pub gyro_markov_deg_per_h: Option<V3>,
-    pub accel_bias_ug: Option<V3>,
-    pub accel_bias_mg: Option<V3>,
-    pub odometer_scale_ppm: Option<f64>,
-    pub odometer_scale_percent: Option<f64>,
-    pub gyro_scale_ppm: Option<V3>,
-    pub gyro_scale_percent: Option<V3>,
-    pub accel_scale_ppm: Option<V3>,
-    pub accel_scale_percent: Option<V3>,
 }
 
 /// `[filter.r]`: measurement standard deviations.
