@@ -69,9 +69,9 @@ impl Range {
             Self::Any => "a finite number".into(),
             Self::NonNegative => "a finite number ≥ 0".into(),
             Self::Positive => "a finite number > 0".into(),
-            Self::Tau => "a number > 0 (inf for none)".into(),
+            Self::Tau => "a time > 0 s (or inf)".into(),
             Self::Interval(lo, hi, lo_open, hi_open) => format!(
-                "in {}{lo}, {hi}{}",
+                "a number in {}{lo}, {hi}{}",
                 if lo_open { '(' } else { '[' },
                 if hi_open { ')' } else { ']' }
             ),
@@ -84,7 +84,10 @@ pub(crate) fn num(key: &str, x: f64, range: Range) -> Res<f64> {
     if range.holds(x) {
         Ok(x)
     } else {
-        Err(bad(key, format!("must be {}, found {x}", range.describe())))
+        Err(bad(
+            key,
+            format!("expected {}, found {x}", range.describe()),
+        ))
     }
 }
 
@@ -96,9 +99,20 @@ pub(crate) fn need<T>(key: &str, x: Option<T>, why: &str) -> Res<T> {
 /// Three values, each in `range`.
 pub(crate) fn vec3(key: &str, v: V3, range: Range) -> Res<Vector3<f64>> {
     for (i, &x) in v.0.iter().enumerate() {
-        num(&format!("{key}[{i}]"), x, range)?;
+        num(&component(key, &v, i), x, range)?;
     }
     Ok(Vector3::from(v.0))
+}
+
+/// The key of component `i` of `v`: `key[i]`, or `key` when the three are
+/// one number (as a file gives a value for every axis).
+pub(crate) fn component(key: &str, v: &V3, i: usize) -> String {
+    let [x, y, z] = v.0;
+    if x.to_bits() == y.to_bits() && y.to_bits() == z.to_bits() {
+        key.to_string()
+    } else {
+        format!("{key}[{i}]")
+    }
 }
 
 /// A quantity given in at most one of several units (`stem_unit` keys):
@@ -148,7 +162,7 @@ pub(crate) fn sigma(
                 "a standard deviation"
             };
             return Err(bad(
-                format!("{}[{i}]", join(prefix, unit.key(stem))),
+                component(&join(prefix, unit.key(stem)), &raw, i),
                 format!(
                     "expected {what} > 0 whose square in SI units is a normal double \
                      (neither 0 nor infinite), found {}",

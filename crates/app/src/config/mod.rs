@@ -17,6 +17,7 @@
 
 pub(crate) mod check;
 pub mod filter;
+pub(crate) mod imu;
 pub(crate) mod locate;
 pub mod names;
 pub(crate) mod p0;

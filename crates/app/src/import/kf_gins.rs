@@ -10,7 +10,7 @@ use super::Imported;
 use crate::config::filter::Keys;
 use crate::config::names::{EarthName, ErrorModelName};
 use crate::config::process::schema::{
-    Exact, File, Filter, Gnss, Imu, ImuColumns, ImuFile, Initial, Output, P0Table,
+    Exact, File, Filter, Gnss, ImuColumns, ImuFile, ImuTable, Initial, Output, P0Table,
 };
 use crate::config::units::{DEG_PER_H, UG};
 use crate::config::vec3::V3;
@@ -292,7 +292,7 @@ fn not_imported(r: &Reader<'_>, noise: &Reader<'_>, path: &Path) -> Result<Vec<S
 }
 
 /// `[imu]`: the noise densities and the biases' Gauss-Markov model.
-fn imu(noise: &Reader<'_>, c: &mut Comments) -> Result<Imu, Error> {
+fn imu(noise: &Reader<'_>, c: &mut Comments) -> Result<ImuTable, Error> {
     let corr = noise.number_in("imunoise", "corrtime")?;
     if corr.is_nan() || corr <= 0.0 {
         return Err(noise.err_in(
@@ -322,14 +322,15 @@ fn imu(noise: &Reader<'_>, c: &mut Comments) -> Result<Imu, Error> {
         "imu.accel_markov_tau".into(),
         format!("imunoise.corrtime {corr} h"),
     ));
-    Ok(Imu {
-        gyro_arw: Some(noise.same("imunoise", "arw")?),
-        accel_vrw: Some(noise.same("imunoise", "vrw")?),
-        gyro_markov_sigma: DEG_PER_H.exact(DEG_PER_H.si(gbstd)),
-        gyro_markov_tau: Some(tau),
-        accel_markov_sigma: ug_of(abstd),
-        accel_markov_tau: Some(tau),
-        ..Imu::default()
+    let one = |x: f64| Some(V3([x; 3]));
+    Ok(ImuTable {
+        gyro_arw: one(noise.same("imunoise", "arw")?),
+        accel_vrw: one(noise.same("imunoise", "vrw")?),
+        gyro_markov_sigma: one(DEG_PER_H.exact(DEG_PER_H.si(gbstd))),
+        gyro_markov_tau: one(tau),
+        accel_markov_sigma: one(ug_of(abstd)),
+        accel_markov_tau: one(tau),
+        ..ImuTable::default()
     })
 }
 

@@ -8,7 +8,7 @@ use kestrel::nav::NavState;
 use crate::config::filter::Keys;
 use crate::config::names::{EarthName, ErrorModelName};
 use crate::config::process::schema::{
-    Exact, File, Filter, Gnss, GnssNoiseSource, Imu, Initial, Odometer, Output, P0Table, V3,
+    Exact, File, Filter, Gnss, GnssNoiseSource, ImuTable, Initial, Odometer, Output, P0Table, V3,
 };
 use crate::config::units::{Unit, DEG_PER_H, DEG_PER_SQRT_H, M_S_PER_SQRT_H, PPM, UG};
 use crate::config::vec3::V3 as ConfigV3;
@@ -145,16 +145,17 @@ fn initial(start: &NavState, p: &InitialUncertainty, fs: &FilterSetup) -> Initia
 
 /// `[imu]`: the filter's noise model (the turn-on biases are P0; scale
 /// factors are states of `ins21` only).
-fn imu(fs: &FilterSetup) -> Imu {
+fn imu(fs: &FilterSetup) -> ImuTable {
     let m = &fs.imu_model;
-    let mut imu = Imu {
-        gyro_arw: Some(DEG_PER_SQRT_H.exact(m.gyro_arw)),
-        accel_vrw: Some(M_S_PER_SQRT_H.exact(m.accel_vrw)),
-        gyro_markov_sigma: DEG_PER_H.exact(m.gyro_markov_sigma),
-        gyro_markov_tau: Some(m.gyro_markov_tau),
-        accel_markov_sigma: UG.exact(m.accel_markov_sigma),
-        accel_markov_tau: Some(m.accel_markov_tau),
-        ..Imu::default()
+    let one = |x: f64| Some(ConfigV3([x; 3]));
+    let mut imu = ImuTable {
+        gyro_arw: one(DEG_PER_SQRT_H.exact(m.gyro_arw)),
+        accel_vrw: one(M_S_PER_SQRT_H.exact(m.accel_vrw)),
+        gyro_markov_sigma: one(DEG_PER_H.exact(m.gyro_markov_sigma)),
+        gyro_markov_tau: one(m.gyro_markov_tau),
+        accel_markov_sigma: one(UG.exact(m.accel_markov_sigma)),
+        accel_markov_tau: one(m.accel_markov_tau),
+        ..ImuTable::default()
     };
     if let ErrorModelKind::Ins21 { scale_tau } = fs.error_model
         && scale_tau.is_finite()

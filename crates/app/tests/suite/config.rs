@@ -168,7 +168,7 @@ fn datasheet_units_bias_models_and_constraints() {
         (
             "[imu]\ngyro_arw = 0.1\ngyro_arw_deg_per_s_per_sqrt_hz = 0.01\n",
             "imu.gyro_arw_deg_per_s_per_sqrt_hz",
-            "give either gyro_arw or gyro_arw_deg_per_s_per_sqrt_hz",
+            "give `gyro_arw` or `gyro_arw_deg_per_s_per_sqrt_hz`, not both",
         ),
         (
             "[imu]\ngyro_markov_sigma = 1\ngyro_markov_tau = 100\ngyro_bias_rw = 1\n",
@@ -323,4 +323,69 @@ fn the_initial_uncertainty_is_one_table_in_both_files() {
         e.contains("give `attitude` or `attitude_deg`, not both"),
         "{e}"
     );
+}
+
+/// The IMU model is one table in both files: `[imu]` of a `process`
+/// configuration and `[filter.imu]` of a scenario file take the same keys
+/// (any of a quantity's units; the `process` documentation's bare keys) and
+/// give the same model, bias random walks included; each file refuses the
+/// other's keys that do not apply to it with the reason.
+#[test]
+fn the_imu_model_is_one_table_in_both_files() {
+    use kestrel_app::config::process::parse;
+    let process = |imu: &str| {
+        parse(
+            &format!(
+                "[initial]\ntime = 0\nposition = [30, 114, 20]\nattitude = [0, 0, 0]\n\
+                 [initial.std]\nattitude = 1\nvelocity = 1\nposition = 1\n[imu]\n{imu}"
+            ),
+            "p.toml".as_ref(),
+        )
+        .map(|s| s.imu)
+    };
+    let scenario = |imu: &str| {
+        let text = format!(
+            "[scenario]\nname = \"t\"\n[trajectory]\nvehicle = \"ground\"\n\
+             start_lat_deg = 30.0\nstart_lon_deg = 114.0\nstart_height_m = 0.0\n\
+             [[trajectory.segment]]\ntype = \"cruise\"\nduration_s = 10.0\n\
+             [imu]\nrate_hz = 100.0\n[gnss]\nrate_hz = 1.0\nposition_std_m = 3.0\n\
+             [filter]\nerror_model = \"ins15\"\nmeasurement = \"gnss-position-velocity\"\n\
+             [filter.p0]\nattitude_deg = 1\nvelocity_m_s = 1\nposition_m = 1\n\
+             [filter.r]\nposition_m = 3.0\nvelocity_m_s = 0.1\n[[filters]]\nkind = \"ekf\"\n\
+             [filter.imu]\n{imu}"
+        );
+        kestrel_app::config::scenario::parse(&text, "s.toml".as_ref()).map(|s| s.filter.imu_model)
+    };
+    let keys = "gyro_arw_deg_per_sqrt_h = 0.1\naccel_vrw = 0.06\ngyro_markov_sigma = 0.5\n\
+                gyro_markov_tau_s = 3600\naccel_bias_rw = 20\n";
+    let a = process(keys).unwrap();
+    assert_eq!(a, scenario(keys).unwrap());
+    assert_eq!(
+        a.gyro_arw,
+        kestrel::nav::ImuSpec::perfect()
+            .with_gyro_arw_deg_per_sqrt_h(0.1)
+            .gyro_arw
+    );
+    assert_eq!(
+        a.accel_bias_rw,
+        kestrel_app::config::units::UG.si(20.0) / 60.0
+    );
+    // Per-file refusals, naming the key.
+    let e = process("gyro_bias_deg_per_h = 1\n")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("key `imu.gyro_bias_deg_per_h`: not used by `process`"),
+        "{e}"
+    );
+    let e = scenario("max_gap = 1\n").unwrap_err().to_string();
+    assert!(
+        e.contains("key `filter.imu.max_gap`: does not apply"),
+        "{e}"
+    );
+    // A model differs from axis to axis only in the simulated IMU.
+    let e = process("gyro_arw = [0.1, 0.1, 0.2]\n")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("the same on every axis"), "{e}");
 }

@@ -263,12 +263,12 @@ fn out_of_range_values_name_key_path_and_allowed_range() {
         (
             "position_std_m = 3.0",
             "position_std_m = [3.0, -1.0, 3.0]",
-            "bad.toml:19:24: key `gnss.position_std_m[1]`: must be a finite number ≥ 0, found -1",
+            "bad.toml:19:24: key `gnss.position_std_m[1]`: expected a finite number ≥ 0, found -1",
         ),
         (
             "rate_hz = 100.0",
             "rate_hz = 0.0",
-            "bad.toml:15:11: key `imu.rate_hz`: must be a finite number > 0, found 0",
+            "bad.toml:15:11: key `imu.rate_hz`: expected a finite number > 0, found 0",
         ),
         (
             "forgetting = 0.97",
@@ -299,13 +299,13 @@ fn out_of_range_values_name_key_path_and_allowed_range() {
         (
             "duration_s = 10.0",
             "duration_s = 0.0",
-            "bad.toml:12:14: key `trajectory.segment[0].duration_s`: must be a finite number > 0, \
+            "bad.toml:12:14: key `trajectory.segment[0].duration_s`: expected a finite number > 0, \
              found 0",
         ),
         (
             "velocity_std_m_s = 0.1\n",
             "velocity_std_m_s = 0.1\n\n[[gnss.outage]]\nstart_s = 50.0\nend_s = 40.0\n",
-            "bad.toml:24:9: key `gnss.outage[0].end_s`: must be after start_s = 50, found 40",
+            "bad.toml:24:9: key `gnss.outage[0].end_s`: expected a time after start_s = 50, found 40",
         ),
     ]);
 }

@@ -12,7 +12,7 @@ use serde::{Deserialize, Deserializer};
 
 use crate::config::filter::{read_kind, Keys, Kinds};
 use crate::config::read::Source;
-use crate::config::units::{DEG, DEG_PER_H, DEG_PER_SQRT_H, M_S_PER_SQRT_H, PPM, UG};
+use crate::config::units::{DEG, DEG_PER_H, PPM, UG};
 use crate::process::timing::{LongGap, TimingRule};
 
 fn deg(x: f64) -> f64 {
@@ -20,12 +20,6 @@ fn deg(x: f64) -> f64 {
 }
 fn deg_per_h(x: f64) -> f64 {
     DEG_PER_H.si(x)
-}
-fn deg_per_sqrt_h(x: f64) -> f64 {
-    DEG_PER_SQRT_H.si(x)
-}
-fn m_s_per_sqrt_h(x: f64) -> f64 {
-    M_S_PER_SQRT_H.si(x)
 }
 fn ppm(x: f64) -> f64 {
     PPM.si(x)

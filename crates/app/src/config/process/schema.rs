@@ -4,6 +4,7 @@
 //! written file has exactly the keys a read file may have.
 
 use super::*;
+pub(crate) use crate::config::imu::ImuTable;
 use crate::config::names::{EarthName, ErrorModelName};
 pub(crate) use crate::config::p0::P0Table;
 use serde::Serialize;
@@ -42,23 +43,6 @@ impl<const N: usize> Serialize for Exact<N> {
     }
 }
 
-/// A key `process` reads but cannot honour: any value is an error that
-/// says what to use instead.
-#[derive(Debug)]
-pub(crate) struct Refused;
-
-impl Serialize for Refused {
-    fn serialize<S: serde::Serializer>(&self, _: S) -> Result<S::Ok, S::Error> {
-        Err(serde::ser::Error::custom("a refused key is never written"))
-    }
-}
-
-impl<'de> Deserialize<'de> for Refused {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        serde::de::IgnoredAny::deserialize(d).map(|_| Refused)
-    }
-}
-
 /// The file as written.
 #[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -67,7 +51,7 @@ pub(crate) struct File {
     pub(crate) earth: EarthName,
     pub(crate) initial: Initial,
     #[serde(default)]
-    pub(crate) imu: Imu,
+    pub(crate) imu: ImuTable,
     #[serde(default)]
     pub(crate) filter: Filter,
     #[serde(default)]
@@ -176,49 +160,6 @@ pub(crate) struct Initial {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub(crate) accel_scale: Option<V3>,
     pub(crate) std: P0Table,
-}
-
-#[derive(Debug, Default, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub(crate) struct Imu {
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(crate) gyro_arw: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(crate) gyro_arw_deg_per_s_per_sqrt_hz: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(crate) gyro_bias_rw: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(crate) accel_bias_rw: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(crate) accel_vrw: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(crate) accel_vrw_ug_per_sqrt_hz: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(crate) gyro_bias: Option<Refused>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(crate) accel_bias: Option<Refused>,
-    #[serde(default)]
-    pub(crate) gyro_markov_sigma: f64,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(crate) gyro_markov_tau: Option<f64>,
-    #[serde(default)]
-    pub(crate) accel_markov_sigma: f64,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(crate) accel_markov_tau: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(crate) gyro_scale: Option<Refused>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(crate) accel_scale: Option<Refused>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(crate) scale_tau: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(crate) gyro_scale_sigma: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(crate) accel_scale_sigma: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(crate) max_gap: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub(crate) long_gap: Option<String>,
 }
 
 /// `[filter]`: the error model, the covariance interval and the lever arm;

@@ -9,7 +9,7 @@ use super::*;
 impl Check<'_> {
     /// `[imu] max_gap` (s, > 0, default 1) and `long_gap` (`"error"`,
     /// the default, or `"coast"`).
-    pub(super) fn timing(&self, m: &Imu) -> Result<TimingRule, InputError> {
+    pub(super) fn timing(&self, m: &ImuTable) -> Result<TimingRule, InputError> {
         let default = TimingRule::default();
         let max_gap = self.positive("imu.max_gap", m.max_gap.unwrap_or(default.max_gap))?;
         let long_gap = match m.long_gap.as_deref() {
@@ -59,7 +59,10 @@ impl Check<'_> {
         })
     }
 
-    pub(super) fn imu(&self, m: &Imu) -> Result<ImuSpec, InputError> {
+    /// `[imu]`: the filter's IMU model ([`ImuTable`]); the turn-on biases
+    /// and scale factors are P0 here, so their keys are refused with the
+    /// keys to use.
+    pub(super) fn imu(&self, m: &ImuTable) -> Result<ImuSpec, InputError> {
         let use_p0 = |sensor: &str, unit: &str| {
             format!(
                 "not used by `process`: the filter's initial {sensor} bias σ is \
@@ -71,99 +74,55 @@ impl Check<'_> {
                         `initial.std.gyro_scale` / `accel_scale` (ppm, error_model = `ins21`) \
                         and a known scale-factor error is `initial.gyro_scale` / `accel_scale`";
         let refused = [
+            ("gyro_bias", m.gyro_bias.is_some(), use_p0("gyro", "°/h")),
             (
-                "imu.gyro_bias",
-                m.gyro_bias.is_some(),
+                "gyro_bias_deg_per_h",
+                m.gyro_bias_deg_per_h.is_some(),
                 use_p0("gyro", "°/h"),
             ),
+            ("accel_bias", m.accel_bias.is_some(), use_p0("accel", "µg")),
             (
-                "imu.accel_bias",
-                m.accel_bias.is_some(),
+                "accel_bias_ug",
+                m.accel_bias_ug.is_some(),
                 use_p0("accel", "µg"),
             ),
             (
-                "imu.gyro_scale",
-                m.gyro_scale.is_some(),
+                "accel_bias_mg",
+                m.accel_bias_mg.is_some(),
+                use_p0("accel", "µg"),
+            ),
+            ("gyro_scale", m.gyro_scale.is_some(), no_state.to_owned()),
+            (
+                "gyro_scale_ppm",
+                m.gyro_scale_ppm.is_some(),
                 no_state.to_owned(),
             ),
             (
-                "imu.accel_scale",
-                m.accel_scale.is_some(),
+                "gyro_scale_percent",
+                m.gyro_scale_percent.is_some(),
                 no_state.to_owned(),
+            ),
+            ("accel_scale", m.accel_scale.is_some(), no_state.to_owned()),
+            (
+                "accel_scale_ppm",
+                m.accel_scale_ppm.is_some(),
+                no_state.to_owned(),
+            ),
+            (
+                "accel_scale_percent",
+                m.accel_scale_percent.is_some(),
+                no_state.to_owned(),
+            ),
+            (
+                "rate_hz",
+                m.rate_hz.is_some(),
+                "not used by `process`: the IMU rate is the IMU file's".to_owned(),
             ),
         ];
         if let Some((key, _, why)) = refused.into_iter().find(|(_, given, _)| *given) {
-            return Err(self.err(key, why));
+            return Err(self.err(&format!("imu.{key}"), why));
         }
-        let vrw = match (m.accel_vrw, m.accel_vrw_ug_per_sqrt_hz) {
-            (Some(_), Some(_)) => {
-                return Err(self.err(
-                    "imu.accel_vrw_ug_per_sqrt_hz",
-                    "give either accel_vrw or accel_vrw_ug_per_sqrt_hz",
-                ))
-            }
-            (Some(x), None) => self.sigma("imu.accel_vrw", x, m_s_per_sqrt_h, Zero::Absent)?,
-            (None, Some(x)) => self.sigma("imu.accel_vrw_ug_per_sqrt_hz", x, ug, Zero::Absent)?,
-            (None, None) => 0.0,
-        };
-        let z = Zero::Absent;
-        let arw = match (m.gyro_arw, m.gyro_arw_deg_per_s_per_sqrt_hz) {
-            (Some(_), Some(_)) => {
-                return Err(self.err(
-                    "imu.gyro_arw_deg_per_s_per_sqrt_hz",
-                    "give either gyro_arw or gyro_arw_deg_per_s_per_sqrt_hz",
-                ))
-            }
-            (Some(x), None) => self.sigma("imu.gyro_arw", x, deg_per_sqrt_h, z)?,
-            // °/s/√Hz = °/√s.
-            (None, Some(x)) => self.sigma("imu.gyro_arw_deg_per_s_per_sqrt_hz", x, deg, z)?,
-            (None, None) => 0.0,
-        };
-        // Bias random walks, per √h in the datasheet: 1/√h = 1/60 per √s.
-        let per_sqrt_h = |key: &str, x: Option<f64>, unit: fn(f64) -> f64, markov: f64| {
-            let Some(x) = x else {
-                return Ok(0.0);
-            };
-            if markov != 0.0 {
-                return Err(self.err(
-                    key,
-                    "one bias model per sensor: a Gauss-Markov process (`*_markov_sigma`) or a \
-                     random walk, not both",
-                ));
-            }
-            self.sigma(key, x, unit, z).map(|v| v / 60.0)
-        };
-        Ok(ImuSpec {
-            gyro_arw: arw,
-            gyro_bias_rw: per_sqrt_h(
-                "imu.gyro_bias_rw",
-                m.gyro_bias_rw,
-                deg_per_h,
-                m.gyro_markov_sigma,
-            )?,
-            accel_bias_rw: per_sqrt_h(
-                "imu.accel_bias_rw",
-                m.accel_bias_rw,
-                ug,
-                m.accel_markov_sigma,
-            )?,
-            gyro_markov_sigma: self.sigma(
-                "imu.gyro_markov_sigma",
-                m.gyro_markov_sigma,
-                deg_per_h,
-                z,
-            )?,
-            gyro_markov_tau: self.tau("imu.gyro_markov_tau", m.gyro_markov_tau)?,
-            accel_vrw: vrw,
-            accel_markov_sigma: self.sigma(
-                "imu.accel_markov_sigma",
-                m.accel_markov_sigma,
-                ug,
-                z,
-            )?,
-            accel_markov_tau: self.tau("imu.accel_markov_tau", m.accel_markov_tau)?,
-            ..ImuSpec::perfect()
-        })
+        m.model("imu").map_err(|b| self.source.bad(b))
     }
 
     pub(super) fn alignment(&self, a: &Alignment) -> Result<AlignmentSettings, InputError> {

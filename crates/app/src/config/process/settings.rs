@@ -171,7 +171,7 @@ impl Check<'_> {
     /// initial σ (the RMS over the axes), into `imu`.
     fn scale_factors(
         &self,
-        m: &Imu,
+        m: &ImuTable,
         model: &ErrorModelKind,
         p0: &InitialUncertainty,
         imu: &mut ImuSpec,

@@ -1,147 +1,44 @@
 //! The IMU, odometer and attitude tables to the simulator's configurations
 //! (GNSS in its own file), and the time windows they share.
 
-use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::ImuSpec;
 use kestrel::sim::{
     AttitudeConfig, ImuErrors, OdometerConfig, OdometerFault, OdometerFaultKind, TimeWindow,
 };
 
-use super::schema_sensors::{
-    AttitudeSection, FaultEntry, FaultType, ImuSection, OdometerSection, WindowEntry,
-};
+use super::schema_sensors::{AttitudeSection, FaultEntry, FaultType, OdometerSection, WindowEntry};
 use crate::config::check::{
     bad, join, need, num, quantity, reject, scalar_quantity, vec3, Range, Res,
 };
-use crate::config::units::{ACCEL, ACCEL_NOISE, ANGLE, GYRO_NOISE, GYRO_RATE, RATIO};
-use crate::config::vec3::V3;
-
-/// The per-axis IMU errors of `s`, SI; absent keys are zero (τ: ∞).
-fn imu_axes(p: &str, s: &ImuSection) -> Res<ImuErrors> {
-    let [ppm, percent] = RATIO;
-    let [ug, mg] = ACCEL;
-    let [dph] = GYRO_RATE;
-    let [arw, arw_hz] = GYRO_NOISE;
-    let [vrw_hz, vrw_h] = ACCEL_NOISE;
-    let zero = |v: Option<Vector3<f64>>| v.unwrap_or_else(Vector3::zeros);
-    let tau = |k: &str, v: Option<V3>| -> Res<Vector3<f64>> {
-        Ok(match v {
-            Some(v) => vec3(&join(p, k), v, Range::Tau)?,
-            None => Vector3::repeat(f64::INFINITY),
-        })
-    };
-    let nn = Range::NonNegative;
-    Ok(ImuErrors {
-        gyro_bias: zero(quantity(
-            p,
-            "gyro_bias",
-            &[(dph, s.gyro_bias_deg_per_h)],
-            Range::Any,
-        )?),
-        gyro_arw: zero(quantity(
-            p,
-            "gyro_arw",
-            &[
-                (arw, s.gyro_arw_deg_per_sqrt_h),
-                (arw_hz, s.gyro_arw_deg_per_h_per_sqrt_hz),
-            ],
-            nn,
-        )?),
-        gyro_markov_sigma: zero(quantity(
-            p,
-            "gyro_markov",
-            &[(dph, s.gyro_markov_deg_per_h)],
-            nn,
-        )?),
-        gyro_markov_tau: tau("gyro_markov_tau_s", s.gyro_markov_tau_s)?,
-        gyro_scale: zero(quantity(
-            p,
-            "gyro_scale",
-            &[(ppm, s.gyro_scale_ppm), (percent, s.gyro_scale_percent)],
-            Range::Any,
-        )?),
-        accel_bias: zero(quantity(
-            p,
-            "accel_bias",
-            &[(ug, s.accel_bias_ug), (mg, s.accel_bias_mg)],
-            Range::Any,
-        )?),
-        accel_vrw: zero(quantity(
-            p,
-            "accel_vrw",
-            &[
-                (vrw_hz, s.accel_vrw_ug_per_sqrt_hz),
-                (vrw_h, s.accel_vrw_m_s_per_sqrt_h),
-            ],
-            nn,
-        )?),
-        accel_markov_sigma: zero(quantity(
-            p,
-            "accel_markov",
-            &[(ug, s.accel_markov_ug), (mg, s.accel_markov_mg)],
-            nn,
-        )?),
-        accel_markov_tau: tau("accel_markov_tau_s", s.accel_markov_tau_s)?,
-        accel_scale: zero(quantity(
-            p,
-            "accel_scale",
-            &[(ppm, s.accel_scale_ppm), (percent, s.accel_scale_percent)],
-            Range::Any,
-        )?),
-    })
-}
+use crate::config::imu::ImuTable;
+use crate::config::units::{ANGLE, RATIO};
 
 /// `[imu]`: the rate and the true errors.
-pub(super) fn imu(s: &ImuSection) -> Res<(f64, ImuErrors)> {
+pub(super) fn imu(s: &ImuTable) -> Res<(f64, ImuErrors)> {
+    let mut foreign = s.process_keys().to_vec();
+    foreign.extend(s.random_walk_keys());
+    reject(
+        "imu",
+        &foreign,
+        "the simulated IMU",
+        "constant biases, noise, Gauss-Markov biases and scale factors per axis",
+    )?;
     let rate = need("imu.rate_hz", s.rate_hz, "the IMU rate is required")?;
-    Ok((
-        num("imu.rate_hz", rate, Range::Positive)?,
-        imu_axes("imu", s)?,
-    ))
+    Ok((num("imu.rate_hz", rate, Range::Positive)?, s.errors("imu")?))
 }
 
-/// `[filter.imu]`: the errors the filter assumes, the same on every axis.
-pub(super) fn imu_spec(s: &ImuSection) -> Res<ImuSpec> {
+/// `[filter.imu]`: the IMU model the filter assumes.
+pub(super) fn imu_spec(s: &ImuTable) -> Res<ImuSpec> {
     let p = "filter.imu";
+    let mut foreign = vec![("rate_hz", s.rate_hz.is_some())];
+    foreign.extend(s.process_keys());
     reject(
         p,
-        &[("rate_hz", s.rate_hz.is_some())],
+        &foreign,
         "the assumed IMU",
         "error magnitudes only (the rate is in [imu])",
     )?;
-    let e = imu_axes(p, s)?;
-    let axes = [
-        ("gyro_bias", e.gyro_bias),
-        ("gyro_arw", e.gyro_arw),
-        ("gyro_markov", e.gyro_markov_sigma),
-        ("gyro_markov_tau_s", e.gyro_markov_tau),
-        ("gyro_scale", e.gyro_scale),
-        ("accel_bias", e.accel_bias),
-        ("accel_vrw", e.accel_vrw),
-        ("accel_markov", e.accel_markov_sigma),
-        ("accel_markov_tau_s", e.accel_markov_tau),
-        ("accel_scale", e.accel_scale),
-    ];
-    if let Some((k, _)) = axes.iter().find(|(_, v)| !(v.x == v.y && v.y == v.z)) {
-        return Err(bad(
-            join(p, k),
-            "the assumed IMU model is the same on every axis: give one number",
-        ));
-    }
-    Ok(ImuSpec {
-        gyro_bias: e.gyro_bias.x,
-        gyro_arw: e.gyro_arw.x,
-        gyro_markov_sigma: e.gyro_markov_sigma.x,
-        gyro_markov_tau: e.gyro_markov_tau.x,
-        accel_bias: e.accel_bias.x,
-        accel_vrw: e.accel_vrw.x,
-        accel_markov_sigma: e.accel_markov_sigma.x,
-        accel_markov_tau: e.accel_markov_tau.x,
-        gyro_scale: e.gyro_scale.x,
-        accel_scale: e.accel_scale.x,
-        gyro_bias_rw: 0.0,
-        accel_bias_rw: 0.0,
-    })
+    s.model(p)
 }
 /// A window from `start_s` and `end_s` or `duration_s`.
 pub(super) fn window(
@@ -157,7 +54,7 @@ pub(super) fn window(
             if end <= start {
                 return Err(bad(
                     join(p, "end_s"),
-                    format!("must be after start_s = {start}, found {end}"),
+                    format!("expected a time after start_s = {start}, found {end}"),
                 ));
             }
             Ok(TimeWindow::new(start, end))
@@ -244,7 +141,7 @@ fn fault(p: &str, f: &FaultEntry) -> Res<OdometerFault> {
             if max < min {
                 return Err(bad(
                     join(p, "max_factor"),
-                    format!("must be ≥ min_factor = {min}, found {max}"),
+                    format!("expected a factor ≥ min_factor = {min}, found {max}"),
                 ));
             }
             OdometerFaultKind::RandomFactor { min, max }

@@ -5,29 +5,7 @@ use serde::Deserialize;
 
 use crate::config::vec3::V3;
 
-/// IMU errors in datasheet units; per axis (`[imu]`) or one value for all
-/// axes (`[filter.imu]`, which has no rate).
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct ImuSection {
-    pub rate_hz: Option<f64>,
-    pub gyro_bias_deg_per_h: Option<V3>,
-    pub gyro_arw_deg_per_sqrt_h: Option<V3>,
-    pub gyro_arw_deg_per_h_per_sqrt_hz: Option<V3>,
-    pub gyro_markov_deg_per_h: Option<V3>,
-    pub gyro_markov_tau_s: Option<V3>,
-    pub gyro_scale_ppm: Option<V3>,
-    pub gyro_scale_percent: Option<V3>,
-    pub accel_bias_ug: Option<V3>,
-    pub accel_bias_mg: Option<V3>,
-    pub accel_vrw_ug_per_sqrt_hz: Option<V3>,
-    pub accel_vrw_m_s_per_sqrt_h: Option<V3>,
-    pub accel_markov_ug: Option<V3>,
-    pub accel_markov_mg: Option<V3>,
-    pub accel_markov_tau_s: Option<V3>,
-    pub accel_scale_ppm: Option<V3>,
-    pub accel_scale_percent: Option<V3>,
-}
+pub(super) use crate::config::imu::ImuTable as ImuSection;
 
 /// What the receiver reports as σ.
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
