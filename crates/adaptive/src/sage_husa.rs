@@ -31,8 +31,10 @@ use kestrel_core::{FilterError, Real};
 /// [`after_update`](NoiseAdapter::after_update) folds the epoch into `R̂` for
 /// the next gain.
 ///
-/// - Forgetting factor `b`: any value in `(0, 1)` is accepted; the paper
+/// - Forgetting factor `b`: any value in `(0, 1]` is accepted; the paper
 ///   recommends `[0.95, 0.99]` (an effective memory of 20 to 100 epochs).
+///   `b = 1` forgets nothing: `d_k` is the formula's limit `1 / (k + 1)`
+///   and `R̂_k` the plain mean of `R̂_0` and the `k` samples.
 ///   With a short memory a single outlier dominates `R̂` and makes it
 ///   strongly anisotropic; in `f32` the covariance of such a filter can then
 ///   lose definiteness, so keep `f32` filters in the recommended range.
@@ -116,17 +118,18 @@ impl<T: Real> Default for SageHusaReport<T> {
 }
 
 impl<T: Real, const M: usize> SageHusa<T, M> {
-    /// An estimator with forgetting factor `b ∈ (0, 1)` (recommended
+    /// An estimator with forgetting factor `b ∈ (0, 1]` (recommended
     /// `[0.95, 0.99]`), starting from the `R` of the first update, no floor,
-    /// skipping epochs faded by an earlier member.
+    /// skipping epochs faded by an earlier member. `b = 1` forgets nothing:
+    /// `d_k` is its limit `1 / (k + 1)`, every sample weighs the same.
     ///
     /// # Errors
-    /// [`FilterError::InvalidParameter`] `"forgetting"` unless `0 < b < 1`.
+    /// [`FilterError::InvalidParameter`] `"forgetting"` unless `0 < b ≤ 1`.
     pub fn new(b: T) -> Result<Self, FilterError> {
-        if !(b > T::zero() && b < T::one()) {
+        if !(b > T::zero() && b <= T::one()) {
             return Err(FilterError::InvalidParameter {
                 name: "forgetting",
-                valid: "0 < b < 1",
+                valid: "0 < b ≤ 1",
             });
         }
         Ok(Self::unchecked(b))
@@ -242,7 +245,13 @@ impl<T: Real, const M: usize> SageHusa<T, M> {
     /// The exponentially weighted update of `R̂` with this epoch's sample.
     fn estimate_from(&mut self, posterior: &Posterior<'_, T, M>, report: &mut SageHusaReport<T>) {
         let (e, posterior_covariance) = posterior.post_fit_residual_and_covariance();
-        let d = (T::one() - self.forgetting) / (T::one() - self.power);
+        // (1 − b) / (1 − b^{k+1}), or its limit 1 / (k + 1) at b = 1 (the
+        // count is k − 1 before this estimate).
+        let d = if self.forgetting == T::one() {
+            T::one() / (lit::<T>(f64::from(self.count)) + lit(2.0))
+        } else {
+            (T::one() - self.forgetting) / (T::one() - self.power)
+        };
         // One pass: (1 − d) R̂ + d (H P Hᵀ + e eᵀ). e eᵀ is exactly
         // symmetric; so is the posterior covariance, and so is the sum.
         let previous = self.estimate();

@@ -66,21 +66,45 @@ struct Stats {
 /// the NIS.
 type Cycle = Result<(Vector4<f64>, Matrix4<f64>, f64), FilterError>;
 
+/// The most Monte-Carlo runs of the demo.
+pub const MAX_RUNS: usize = 100_000;
+
+/// The most radar scans per run.
+pub const MAX_STEPS: usize = 100_000;
+
+/// The most scans in all (runs × steps): about a minute on one core.
+pub const MAX_SCANS: usize = 10_000_000;
+
 /// Tracks a constant-velocity target with a range-bearing radar with the
 /// covariance-form EKF, the UKF and the square-root UKF on the same data.
 ///
 /// # Errors
-/// A one-line message for zero runs or steps.
+/// A one-line message for zero runs or steps, or more than [`MAX_RUNS`],
+/// [`MAX_STEPS`] or [`MAX_SCANS`].
 ///
 /// ```
 /// use kestrel_app::demo::{radar_demo, DemoOptions};
 /// let rows = radar_demo(&DemoOptions { runs: 2, steps: 20, seed: 1 }).unwrap();
 /// assert_eq!(rows.len(), 3);
 /// assert!(rows.iter().all(|r| r.errors == 0 && r.position_rms < 100.0));
+/// let e = radar_demo(&DemoOptions { runs: 1_000_000_000_000, steps: 20, seed: 1 }).unwrap_err();
+/// assert!(e.starts_with("--runs is at most 100000"), "{e}");
 /// ```
 pub fn radar_demo(args: &DemoOptions) -> Result<Vec<DemoRow>, String> {
     if args.runs == 0 || args.steps == 0 {
         return Err("--runs and --steps must be at least 1".into());
+    }
+    if args.runs > MAX_RUNS || args.steps > MAX_STEPS {
+        return Err(format!(
+            "--runs is at most {MAX_RUNS} and --steps at most {MAX_STEPS}, found {} and {}",
+            args.runs, args.steps
+        ));
+    }
+    if args.runs * args.steps > MAX_SCANS {
+        return Err(format!(
+            "--runs × --steps is at most {MAX_SCANS} scans (about a minute), found {}",
+            args.runs * args.steps
+        ));
     }
     let cv = ConstantVelocity2d::new(ACCEL_PSD).map_err(|e| e.to_string())?;
     let radar = RangeBearing::<f64, 4>::new(

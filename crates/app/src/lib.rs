@@ -46,6 +46,7 @@
 pub mod config;
 pub mod demo;
 pub mod experiment;
+pub mod fuzz;
 pub mod import;
 pub mod output;
 pub mod process;
@@ -54,6 +55,7 @@ pub mod reproduce;
 pub mod scenario;
 
 pub mod simulate;
+pub mod transaction;
 
 pub use kestrel_io::{Error, InputError, Location};
 

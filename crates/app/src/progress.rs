@@ -40,6 +40,13 @@ pub trait Progress {
     fn reached(&mut self, t: f64);
     /// The stage is over, whether it succeeded or not.
     fn finish(&mut self) {}
+
+    /// Whether the run should stop (checked at every report): a caller's
+    /// cancellation. The run then returns
+    /// [`Error::Cancelled`](crate::Error::Cancelled) and leaves nothing.
+    fn cancelled(&self) -> bool {
+        false
+    }
 }
 
 /// Reports nothing.
@@ -55,6 +62,41 @@ impl Progress for Silent {
     fn reached(&mut self, _t: f64) {}
 }
 
+/// A [`Progress`] that also stops the run once a [`Cancel`] token is set
+/// (checked where the run reports: every 4096 samples of a log, every
+/// Monte Carlo run).
+///
+/// [`Cancel`]: crate::transaction::Cancel
+pub(crate) struct Cancellable<'a, P: Progress + ?Sized> {
+    inner: &'a mut P,
+    cancel: &'a crate::transaction::Cancel,
+}
+
+impl<'a, P: Progress + ?Sized> Cancellable<'a, P> {
+    /// `inner`, stopped by `cancel` as well as by its own `cancelled`.
+    pub(crate) fn new(inner: &'a mut P, cancel: &'a crate::transaction::Cancel) -> Self {
+        Self { inner, cancel }
+    }
+}
+
+impl<P: Progress + ?Sized> Progress for Cancellable<'_, P> {
+    fn stage(&mut self, name: &str) {
+        self.inner.stage(name);
+    }
+    fn begin(&mut self, start: f64, end: f64) {
+        self.inner.begin(start, end);
+    }
+    fn reached(&mut self, t: f64) {
+        self.inner.reached(t);
+    }
+    fn finish(&mut self) {
+        self.inner.finish();
+    }
+    fn cancelled(&self) -> bool {
+        self.cancel.is_cancelled() || self.inner.cancelled()
+    }
+}
+
 /// Passes every [`EVERY`]-th sample on to a [`Progress`].
 pub(crate) struct Ticker<'p> {
     inner: &'p mut dyn Progress,
@@ -68,13 +110,18 @@ impl<'p> Ticker<'p> {
         Self { inner, count: 0 }
     }
 
-    /// One sample at `t`.
-    pub(crate) fn at(&mut self, t: f64) {
+    /// One sample at `t`; [`Error::Cancelled`](crate::Error::Cancelled)
+    /// once the receiver asks the run to stop.
+    pub(crate) fn at(&mut self, t: f64) -> Result<(), crate::Error> {
         self.count += 1;
         if self.count >= EVERY {
             self.count = 0;
             self.inner.reached(t);
+            if self.inner.cancelled() {
+                return Err(crate::Error::Cancelled);
+            }
         }
+        Ok(())
     }
 
     /// The run is over.

@@ -21,26 +21,35 @@ pub struct DemoArgs {
 /// Runs the demo and prints its table.
 ///
 /// # Errors
-/// A one-line message for zero runs or steps.
-pub fn run(args: &DemoArgs) -> Result<(), String> {
+/// A one-line message for zero runs or steps, or a failed write.
+pub fn run(args: &DemoArgs) -> Result<(), crate::CliError> {
     let rows = radar_demo(&DemoOptions {
         runs: args.runs,
         steps: args.steps,
         seed: args.seed,
-    })?;
-    println!(
+    })
+    .map_err(crate::CliError::Failed)?;
+    crate::outln!(
         "Radar tracking, constant-velocity target: {} runs × {} scans, seed {}",
-        args.runs, args.steps, args.seed
-    );
-    println!(
+        args.runs,
+        args.steps,
+        args.seed
+    )?;
+    crate::outln!(
         "range σ {RANGE_SIGMA} m, bearing σ {BEARING_SIGMA} rad, acceleration PSD {ACCEL_PSD} m²/s³\n"
-    );
-    println!(
+    )?;
+    crate::outln!(
         "{:<14}{:>14}{:>16}{:>12}{:>12}{:>10}{:>14}",
-        "filter", "pos RMS [m]", "vel RMS [m/s]", "mean NEES", "mean NIS", "errors", "ns / cycle"
-    );
+        "filter",
+        "pos RMS [m]",
+        "vel RMS [m/s]",
+        "mean NEES",
+        "mean NIS",
+        "errors",
+        "ns / cycle"
+    )?;
     for r in &rows {
-        println!(
+        crate::outln!(
             "{:<14}{:>14.3}{:>16.4}{:>12.3}{:>12.3}{:>10}{:>14.0}",
             r.name,
             r.position_rms,
@@ -49,10 +58,10 @@ pub fn run(args: &DemoArgs) -> Result<(), String> {
             r.mean_nis,
             r.errors,
             r.nanos_per_cycle,
-        );
+        )?;
     }
-    println!(
+    crate::outln!(
         "\nA consistent filter has mean NEES ≈ 4 (state size) and mean NIS ≈ 2 (measurement size)."
-    );
+    )?;
     Ok(())
 }

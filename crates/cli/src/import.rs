@@ -47,15 +47,15 @@ pub fn run(args: &ImportArgs) -> Result<(), CliError> {
     let ImportFormat::KfGins(a) = &args.format;
     let imported = import_kf_gins(&a.file, a.out.as_deref(), a.force)?;
     for w in &imported.warnings {
-        eprintln!("warning: {w}");
+        crate::errln!("warning: {w}")?;
     }
     match &a.out {
-        None => print!("{}", imported.toml),
-        Some(out) => eprintln!(
+        None => crate::out::print(&imported.toml)?,
+        Some(out) => crate::errln!(
             "wrote {}; run it with:\n  {}",
             out.display(),
             imported.command
-        ),
+        )?,
     }
     Ok(())
 }

@@ -3,7 +3,8 @@
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use kestrel_cli::{demo, import, process, reproduce, simulate, CliError};
+use kestrel_cli::signals::Signals;
+use kestrel_cli::{demo, import, out, process, reproduce, simulate, CliError, Context};
 
 /// State estimation for integrated navigation: reproduce the papers'
 /// experiments, run your own scenarios, process recorded IMU/GNSS data.
@@ -40,20 +41,33 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    let signals = Signals::install();
     let cli = Cli::parse();
+    let ctx = Context {
+        cancel: signals.cancel().clone(),
+        command: std::env::args().collect(),
+    };
     let result: Result<(), CliError> = match cli.command {
-        Command::Reproduce(args) => reproduce::reproduce(&args),
-        Command::Run(args) => reproduce::run_file(&args),
+        Command::Reproduce(args) => reproduce::reproduce(&args, &ctx),
+        Command::Run(args) => reproduce::run_file(&args, &ctx),
         Command::Scenarios => reproduce::list_scenarios(),
-        Command::Process(args) => process::run(&args),
-        Command::Simulate(args) => simulate::run(&args),
+        Command::Process(args) => process::run(&args, &ctx),
+        Command::Simulate(args) => simulate::run(&args, &ctx),
         Command::Import(args) => import::run(&args),
-        Command::Demo(args) => demo::run(&args).map_err(CliError::Failed),
+        Command::Demo(args) => demo::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        // The reader of our output went away (`kestrel … | head`): a quiet
+        // end, with the status of a process a closed pipe stops.
+        Err(e) if out::is_closed_pipe(&e) => ExitCode::from(141),
+        Err(CliError::Cancelled) => {
+            let _ = out::warn("kestrel: stopped by a signal; nothing was written");
+            ExitCode::from(signals.exit_status().unwrap_or(130))
+        }
         Err(error) => {
-            eprintln!("kestrel: {error}");
+            // If standard error is gone too, the status still says it.
+            let _ = out::warn(&format!("kestrel: {error}"));
             ExitCode::FAILURE
         }
     }

@@ -8,9 +8,8 @@ use kestrel_app::process::{Inputs, OdometerInput, Outage, ProcessReport};
 
 use crate::plot::{
     adaptation_figure, process_figures, FigureOptions, FilterTrace, ProcessPlots, SolutionErrors,
-    PROCESS_FIGURES,
 };
-use crate::CliError;
+use crate::{CliError, Context};
 
 pub use kestrel_app::process::summary;
 
@@ -53,6 +52,11 @@ pub struct ProcessArgs {
     /// Do not draw the error plots.
     #[arg(long)]
     pub no_plots: bool,
+    /// Replace files in --out that no earlier kestrel run into it wrote
+    /// (without it they are refused; an earlier run's files are always
+    /// replaced, exactly the set its manifest lists).
+    #[arg(long)]
+    pub force: bool,
     /// Also smooth the run (Rauch-Tung-Striebel over the closed-loop error
     /// state): smoothed.nav, smoothed.csv, smoothed_std.csv and, with
     /// --truth, errors_smoothed.csv; the plots show both solutions.
@@ -64,9 +68,9 @@ pub struct ProcessArgs {
 ///
 /// # Errors
 /// [`CliError`] with a one-line cause.
-pub fn run(args: &ProcessArgs) -> Result<(), CliError> {
-    let report = process(args)?;
-    print!("{}", summary(&report));
+pub fn run(args: &ProcessArgs, ctx: &Context) -> Result<(), CliError> {
+    let report = process(args, ctx)?;
+    crate::out::print(&summary(&report))?;
     Ok(())
 }
 
@@ -77,7 +81,7 @@ pub fn run(args: &ProcessArgs) -> Result<(), CliError> {
 /// # Errors
 /// [`CliError`]: bad input (naming file, line, column or key), an output
 /// that cannot be written, or a filter divergence (naming the time).
-pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
+pub fn process(args: &ProcessArgs, ctx: &Context) -> Result<ProcessReport, CliError> {
     if args.odo && args.odometer.is_some() {
         return Err(CliError::Failed(
             "give the odometer speeds either in the IMU file (--odo) or in their own file \
@@ -97,21 +101,35 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
         config: args.config.clone(),
         out: args.out.clone(),
         outages: args.outages.clone(),
-        also_written: PROCESS_FIGURES
-            .iter()
-            .chain(&["adaptation"])
-            .flat_map(|stem| [format!("{stem}.png"), format!("{stem}.svg")])
-            .collect(),
         smooth: args.smooth,
     };
+    let mut tx = kestrel_app::process::begin(&inputs, args.force, &ctx.command)?;
     let mut bar = crate::progress::Bar::time();
-    let run = kestrel_app::process::process(&inputs, &mut bar)?;
-    let mut report = run.report;
-    if args.no_plots {
-        return Ok(report);
+    let run = kestrel_app::process::run(&inputs, &mut tx, &mut bar, &ctx.cancel)?;
+    let mut report = run.report.clone();
+    if !args.no_plots {
+        for figure in figures(&run.traces, &report, &run, tx.scratch_dir())? {
+            let name = figure
+                .file_name()
+                .and_then(|n| n.to_str())
+                .unwrap_or_default();
+            report.files.push(tx.adopt(name)?);
+        }
     }
+    ctx.cancel.check()?;
+    tx.commit(run.provenance)?;
+    Ok(report)
+}
+
+/// The figures of a run, drawn into `dir`; their paths there.
+fn figures(
+    traces: &Option<kestrel_app::process::ErrorTraces>,
+    report: &ProcessReport,
+    run: &kestrel_app::process::Processed,
+    dir: &std::path::Path,
+) -> Result<Vec<std::path::PathBuf>, CliError> {
     let mut solutions = Vec::new();
-    if let Some(t) = &run.traces {
+    if let Some(t) = traces {
         solutions.push(SolutionErrors {
             label: report.filter,
             errors: &t.every,
@@ -134,19 +152,18 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
         track: &run.track,
         states: &run.states,
     };
-    let mut files = process_figures(&args.out, &plots)?;
-    if let Some(t) = &run.traces {
+    let mut files = process_figures(dir, &plots)?;
+    if let Some(t) = traces {
         let aiding = [FilterTrace {
             label: report.filter,
             records: &t.aiding,
         }];
         files.extend(adaptation_figure(
-            &args.out,
+            dir,
             "kestrel process",
             &aiding,
             &FigureOptions::default(),
         )?);
     }
-    report.files.extend(files);
-    Ok(report)
+    Ok(files)
 }

@@ -10,6 +10,7 @@ use kestrel_app::reproduce::{
     StudyRow, MAX_RUNS, MAX_STUDY_RUNS, MAX_THREADS,
 };
 use kestrel_app::scenario::{builtin, by_name, Scenario};
+use kestrel_app::transaction::{Begin, InputRecord, Provenance, Transaction};
 
 use crate::plot::{error_figures_with, sensitivity_figure, FigureOptions, FilterTrace};
 use crate::progress::Bar;
@@ -43,14 +44,16 @@ pub struct MonteCarloArgs {
 }
 
 impl MonteCarloArgs {
-    /// The library's options with `study_runs` seeds per study variant.
-    fn options(&self, study_runs: usize) -> ReproduceOptions {
+    /// The library's options with `study_runs` seeds per study variant,
+    /// stopped by `ctx`'s signals.
+    fn options(&self, study_runs: usize, ctx: &crate::Context) -> ReproduceOptions {
         ReproduceOptions {
             runs: self.runs,
             seed: self.seed,
             threads: self.threads,
             duration: self.duration,
             study_runs,
+            cancel: ctx.cancel.clone(),
         }
     }
 }
@@ -82,11 +85,17 @@ pub struct RunArgs {
 
 /// Runs `kestrel reproduce`.
 ///
+/// Each scenario's folder (`DIR/<scenario>/`) is one output transaction,
+/// published when its scenario is done; the study across scenarios
+/// (`DIR/sensitivity.*`) is another, on `DIR` itself, held from the start
+/// so a second reproduction into `DIR` is refused at once.
+///
 /// # Errors
-/// [`CliError`] with a one-line cause: bad options, or an output file that
-/// cannot be written. A filter that diverges is reported in the tables, not
-/// as an error.
-pub fn reproduce(args: &ReproduceArgs) -> Result<(), CliError> {
+/// [`CliError`] with a one-line cause: bad options, an output file that
+/// cannot be written, or a filter that failed in every run (after its
+/// scenario's files are written). A filter that diverges in some runs is
+/// reported in the tables, not as an error.
+pub fn reproduce(args: &ReproduceArgs, ctx: &crate::Context) -> Result<(), CliError> {
     let scenarios: Vec<Scenario> = if args.which == "all" {
         builtin().into()
     } else {
@@ -94,29 +103,38 @@ pub fn reproduce(args: &ReproduceArgs) -> Result<(), CliError> {
             .ok_or_else(|| CliError::Failed(format!("no built-in scenario `{}`", args.which)))?;
         vec![s]
     };
+    let mut top = Transaction::begin(&args.monte_carlo.out, Begin::command(&ctx.command))?;
     let mut study = Vec::new();
+    let mut failed = Vec::new();
     for s in &scenarios {
-        let options = args.monte_carlo.options(args.study_runs);
-        study.extend(execute(s, paper(&s.name), &args.monte_carlo, &options)?);
+        let options = args.monte_carlo.options(args.study_runs, ctx);
+        let done = execute(s, paper(&s.name), &args.monte_carlo, &options, ctx, None)?;
+        study.extend(done.study);
+        failed.extend(done.failed);
     }
     if !study.is_empty() {
-        write_study(&args.monte_carlo, &study)?;
+        write_study(&args.monte_carlo, &mut top, &study)?;
+        top.commit(Provenance::default())?;
     }
-    Ok(())
+    every_run_failed(&failed)
 }
 
 /// The sensitivity study of every scenario reproduced: its CSV and figure
 /// in the output folder.
-fn write_study(mc: &MonteCarloArgs, study: &[StudyRow]) -> Result<(), CliError> {
-    std::fs::create_dir_all(&mc.out).map_err(|e| CliError::io(&mc.out, e))?;
-    let csv = mc.out.join("sensitivity.csv");
-    write_study_csv(&csv, study)?;
-    let mut files = vec![csv];
+fn write_study(
+    mc: &MonteCarloArgs,
+    tx: &mut Transaction,
+    study: &[StudyRow],
+) -> Result<(), CliError> {
+    write_study_csv(&tx.path("sensitivity.csv")?, study)?;
+    let mut files = vec![mc.out.join("sensitivity.csv")];
     if !mc.no_plots {
-        files.extend(sensitivity_figure(&mc.out, "sensitivity", study, 0)?);
+        for f in sensitivity_figure(tx.scratch_dir(), "sensitivity", study, 0)? {
+            files.push(tx.adopt(&file_name(&f))?);
+        }
     }
     let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
-    println!("sensitivity study: wrote {}\n", names.join(", "));
+    crate::outln!("sensitivity study: wrote {}\n", names.join(", "))?;
     Ok(())
 }
 
@@ -124,10 +142,40 @@ fn write_study(mc: &MonteCarloArgs, study: &[StudyRow]) -> Result<(), CliError> 
 ///
 /// # Errors
 /// As [`reproduce`], and [`CliError::Input`] for a bad scenario file.
-pub fn run_file(args: &RunArgs) -> Result<(), CliError> {
-    let scenario = kestrel_app::config::scenario::load(&args.scenario)?;
-    let options = args.monte_carlo.options(0);
-    execute(&scenario, None, &args.monte_carlo, &options).map(|_| ())
+pub fn run_file(args: &RunArgs, ctx: &crate::Context) -> Result<(), CliError> {
+    let (scenario, tally) = kestrel_app::config::scenario::load_recorded(&args.scenario)?;
+    let options = args.monte_carlo.options(0, ctx);
+    let input = InputRecord {
+        flag: "scenario file".into(),
+        path: args.scenario.display().to_string(),
+        bytes: tally.bytes(),
+        sha256: tally.sha256(),
+    };
+    let done = execute(
+        &scenario,
+        None,
+        &args.monte_carlo,
+        &options,
+        ctx,
+        Some((&args.scenario, input)),
+    )?;
+    every_run_failed(&done.failed)
+}
+
+/// An error naming the filters that failed in every run (`scenario`,
+/// `filter`), if any.
+fn every_run_failed(failed: &[(String, String)]) -> Result<(), CliError> {
+    if failed.is_empty() {
+        return Ok(());
+    }
+    let names: Vec<String> = failed
+        .iter()
+        .map(|(scenario, filter)| format!("{filter} (scenario {scenario})"))
+        .collect();
+    Err(CliError::Failed(format!(
+        "every run of {} failed; the reports say why",
+        names.join(", ")
+    )))
 }
 
 /// Runs `kestrel scenarios`: prints each built-in scenario with a one-line
@@ -137,27 +185,50 @@ pub fn run_file(args: &RunArgs) -> Result<(), CliError> {
 /// Never.
 pub fn list_scenarios() -> Result<(), CliError> {
     for s in builtin() {
-        println!("{}  {}", s.name, s.description);
+        crate::outln!("{}  {}", s.name, s.description)?;
     }
     Ok(())
 }
 
-/// Reproduces one scenario, writes its files and figures and prints its
-/// report; returns its sensitivity study's rows.
+/// What [`execute`] leaves for the caller.
+struct Executed {
+    /// The sensitivity study's rows.
+    study: Vec<StudyRow>,
+    /// The filters that failed in every run: (scenario, filter).
+    failed: Vec<(String, String)>,
+}
+
+/// Reproduces one scenario, writes its files and figures through one
+/// output transaction on its folder and prints its report; returns its
+/// sensitivity study's rows and the filters that failed in every run.
 fn execute(
     scenario: &Scenario,
     paper: Option<&'static Paper>,
     args: &MonteCarloArgs,
     options: &ReproduceOptions,
-) -> Result<Vec<StudyRow>, CliError> {
-    let r = reproduce_scenario(scenario, paper, options, &mut Bar::runs())?;
+    ctx: &crate::Context,
+    input: Option<(&Path, InputRecord)>,
+) -> Result<Executed, CliError> {
     let dir = args.out.join(slug(&scenario.name));
-    let mut written = r.write(&dir)?.len();
-    if !args.no_plots {
-        written += figures(&dir, &r)?.len();
+    let mut begin = Begin::command(&ctx.command);
+    let mut provenance = provenance(scenario, options);
+    if let Some((path, record)) = input {
+        begin = begin.input("scenario file", path);
+        provenance.inputs.push(record);
     }
-    println!("{}", r.text);
-    println!(
+    let mut tx = Transaction::begin(&dir, begin)?;
+    let r = reproduce_scenario(scenario, paper, options, &mut Bar::runs())?;
+    let mut written = r.write(&mut tx)?.len();
+    if !args.no_plots {
+        for f in figures(tx.scratch_dir(), &r)? {
+            tx.adopt(&file_name(&f))?;
+            written += 1;
+        }
+    }
+    ctx.cancel.check()?;
+    tx.commit(provenance)?;
+    crate::outln!("{}", r.text)?;
+    crate::outln!(
         "wrote {written} files to {} (report.txt, summary.csv, runs.csv, epochs_*.csv{}{})\n",
         dir.display(),
         if r.study.is_empty() {
@@ -166,14 +237,47 @@ fn execute(
             ", sensitivity.csv"
         },
         if args.no_plots { "" } else { ", *.png, *.svg" }
-    );
-    for (label, failed, runs) in r.failures() {
-        eprintln!(
-            "kestrel: warning: {label} failed in {failed} of {runs} runs of scenario {} (see the report)",
+    )?;
+    let mut failed = Vec::new();
+    for (label, n, runs) in r.failures() {
+        crate::errln!(
+            "kestrel: warning: {label} failed in {n} of {runs} runs of scenario {} (see the report)",
             scenario.name
-        );
+        )?;
+        if n == runs {
+            failed.push((scenario.name.clone(), label.to_owned()));
+        }
     }
-    Ok(r.study)
+    Ok(Executed {
+        study: r.study,
+        failed,
+    })
+}
+
+/// What a reproduction's manifest records beyond the command line: the
+/// seeds and the options that shape the numbers.
+fn provenance(scenario: &Scenario, options: &ReproduceOptions) -> Provenance {
+    let seed = options.seed.unwrap_or(scenario.seed);
+    Provenance {
+        seeds: (0..options.runs as u64)
+            .map(|i| seed.wrapping_add(i))
+            .collect(),
+        configuration: Some(serde_json::json!({
+            "scenario": scenario.name,
+            "runs": options.runs,
+            "seed": seed,
+            "duration_s": options.duration,
+            "study_runs": options.study_runs,
+        })),
+        ..Provenance::default()
+    }
+}
+
+/// The file name of a path the figure code returned.
+fn file_name(path: &Path) -> String {
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default()
 }
 
 /// The error figures of a reproduction in `dir`.

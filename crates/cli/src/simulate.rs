@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use kestrel_app::simulate::{simulate, SimulateOptions};
+use kestrel_app::simulate::{simulate_with, SimulateOptions};
 
 use crate::CliError;
 
@@ -28,8 +28,10 @@ pub struct SimulateArgs {
     /// Output directory (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
-    /// Replace imu.txt, gnss.txt, truth.nav and process.toml if they exist
-    /// (without it, existing files are never overwritten).
+    /// Also replace an imu.txt, gnss.txt, truth.nav or process.toml that
+    /// no earlier kestrel run into the folder wrote (without it they are
+    /// refused; an earlier run's files are always replaced, exactly the set
+    /// its manifest lists).
     #[arg(long)]
     pub force: bool,
 }
@@ -52,9 +54,9 @@ impl SimulateArgs {
 ///
 /// # Errors
 /// [`CliError`] with a one-line cause.
-pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
-    let r = simulate(&args.options())?;
-    println!(
+pub fn run(args: &SimulateArgs, ctx: &crate::Context) -> Result<(), CliError> {
+    let r = simulate_with(&args.options(), &ctx.cancel, &ctx.command)?;
+    crate::outln!(
         "{} IMU samples{}, {} GNSS fixes",
         r.samples,
         if r.odometer {
@@ -63,15 +65,33 @@ pub fn run(args: &SimulateArgs) -> Result<(), CliError> {
             ""
         },
         r.fixes
-    );
+    )?;
     for f in &r.files {
-        println!("wrote {}", f.display());
+        crate::outln!("wrote {}", f.display())?;
     }
-    let d = args.out.display();
-    println!(
-        "process with: kestrel process --imu {d}/imu.txt --gnss {d}/gnss.txt --truth {d}/truth.nav \
-         --config {d}/process.toml{} --out {d}/result",
-        if r.odometer { " --odo" } else { "" }
-    );
+    crate::outln!("process with: {}", process_command(&args.out, r.odometer))?;
     Ok(())
+}
+
+/// The `kestrel process` command for the files simulated into `out`,
+/// quoted for a POSIX shell.
+fn process_command(out: &std::path::Path, odometer: bool) -> String {
+    let file = |name: &str| out.join(name).to_string_lossy().into_owned();
+    let (imu, gnss, truth, config, result) = (
+        file("imu.txt"),
+        file("gnss.txt"),
+        file("truth.nav"),
+        file("process.toml"),
+        file("result"),
+    );
+    let mut words = vec![
+        "kestrel", "process", "--imu", &imu, "--gnss", &gnss, "--truth", &truth, "--config",
+        &config,
+    ];
+    if odometer {
+        words.push("--odo");
+    }
+    words.extend(["--out", &result]);
+    // A path with a NUL byte cannot be quoted (nor exist): shown as is.
+    shlex::try_join(words.iter().copied()).unwrap_or_else(|_| words.join(" "))
 }

@@ -107,11 +107,42 @@ pub enum Error {
     /// Any other failure, as one line.
     #[error("{0}")]
     Failed(String),
+    /// The run was stopped before it finished (a signal, or a caller's
+    /// cancellation); nothing it would have written was published.
+    #[error("stopped before the end: nothing was written")]
+    Cancelled,
+    /// A device ran out of space writing `path`.
+    #[error("{}: no space left on the device ({free} bytes free); nothing was written", path.display())]
+    DiskFull {
+        /// The file being written.
+        path: PathBuf,
+        /// Bytes free on its device when the write failed.
+        free: u64,
+    },
 }
 
 impl Error {
-    /// An I/O error on `path`.
+    /// An I/O error on `path`; a full device becomes [`Error::DiskFull`]
+    /// with the free space.
+    ///
+    /// ```
+    /// use kestrel_io::Error;
+    /// let e = Error::io("x.txt".as_ref(), std::io::Error::from_raw_os_error(28));
+    /// assert!(matches!(e, Error::DiskFull { .. }));
+    /// assert!(e.to_string().starts_with("x.txt: no space left on the device ("));
+    /// ```
     pub fn io(path: &Path, source: std::io::Error) -> Self {
+        // ENOSPC (Linux, macOS: 28); EDQUOT (Linux: 122), a quota full.
+        if matches!(source.raw_os_error(), Some(28 | 122)) {
+            let dir = path
+                .parent()
+                .filter(|p| !p.as_os_str().is_empty())
+                .unwrap_or(Path::new("."));
+            return Self::DiskFull {
+                path: path.to_path_buf(),
+                free: fs4::available_space(dir).unwrap_or(0),
+            };
+        }
         Self::Io {
             path: path.to_path_buf(),
             source,

@@ -5,6 +5,8 @@
 //! - [`gins`]: the open GINS text formats (IMU increments, GNSS fixes,
 //!   navigation results, odometer speeds), RTKLIB `.pos`, and configurable
 //!   IMU columns, units, axes and time bases.
+//! - [`input`]: opening an input once, tallied (bytes, SHA-256) as it is
+//!   read, so nothing is read twice and pipes work.
 //! - [`error`]: the errors of reading and writing.
 //!
 //! Processing a log (configuration, alignment, filtering, smoothing,
@@ -28,5 +30,6 @@
 
 pub mod error;
 pub mod gins;
+pub mod input;
 
 pub use error::{Error, InputError, Location};

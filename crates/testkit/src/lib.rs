@@ -29,6 +29,23 @@ use std::hint::black_box;
 thread_local! {
     static ARMED: Cell<bool> = const { Cell::new(false) };
     static CALLS: Cell<usize> = const { Cell::new(0) };
+    /// Bytes allocated minus bytes freed while armed.
+    static LIVE: Cell<isize> = const { Cell::new(0) };
+    /// The most `LIVE` has been while armed.
+    static PEAK: Cell<isize> = const { Cell::new(0) };
+    /// The most `LIVE` may become while armed: a larger request fails
+    /// (the process stops with "memory allocation … failed") instead of
+    /// taking the machine's memory.
+    static LIMIT: Cell<isize> = const { Cell::new(isize::MAX) };
+}
+
+/// Whether a request for `bytes` more fits under the armed thread's limit.
+fn fits(bytes: isize) -> bool {
+    ARMED
+        .try_with(|armed| {
+            !armed.get() || LIVE.with(|l| l.get()).saturating_add(bytes) <= LIMIT.with(|m| m.get())
+        })
+        .unwrap_or(true)
 }
 
 /// The system allocator, counting every allocation, zeroed allocation,
@@ -49,31 +66,51 @@ thread_local! {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct CountingAllocator;
 
-fn note() {
+/// One heap call of the current thread changing its live bytes by `bytes`.
+fn note(bytes: isize) {
     // `try_with`: the allocator may run while thread-locals are torn down.
     let _ = ARMED.try_with(|armed| {
         if armed.get() {
             CALLS.with(|c| c.set(c.get() + 1));
+            let live = LIVE.with(|l| {
+                l.set(l.get() + bytes);
+                l.get()
+            });
+            PEAK.with(|p| p.set(p.get().max(live)));
         }
     });
+}
+
+/// A size as a signed change of the live bytes.
+fn signed(size: usize) -> isize {
+    isize::try_from(size).unwrap_or(isize::MAX)
 }
 
 // SAFETY: every call is forwarded unchanged to `System`.
 unsafe impl GlobalAlloc for CountingAllocator {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        note();
+        if !fits(signed(layout.size())) {
+            return std::ptr::null_mut();
+        }
+        note(signed(layout.size()));
         unsafe { System.alloc(layout) }
     }
     unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        note();
+        if !fits(signed(layout.size())) {
+            return std::ptr::null_mut();
+        }
+        note(signed(layout.size()));
         unsafe { System.alloc_zeroed(layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        note();
+        if !fits(signed(new_size) - signed(layout.size())) {
+            return std::ptr::null_mut();
+        }
+        note(signed(new_size) - signed(layout.size()));
         unsafe { System.realloc(ptr, layout, new_size) }
     }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        note();
+        note(-signed(layout.size()));
         unsafe { System.dealloc(ptr, layout) }
     }
 }
@@ -99,6 +136,50 @@ pub fn heap_calls<R>(f: impl FnOnce() -> R) -> (R, usize) {
     let out = f();
     ARMED.with(|a| a.set(false));
     (out, CALLS.with(Cell::get))
+}
+
+/// Runs `f` armed and returns its result with the most bytes the current
+/// thread had allocated and not yet freed at any moment meanwhile (0
+/// unless [`CountingAllocator`] is the global allocator): the memory a
+/// call needs at its peak.
+///
+/// ```
+/// #[global_allocator]
+/// static ALLOCATOR: kestrel_testkit::CountingAllocator = kestrel_testkit::CountingAllocator;
+///
+/// fn main() {
+///     let ((), peak) = kestrel_testkit::heap_peak(|| {
+///         let a = vec![0u8; 1000];
+///         drop(a);
+///         let _b = vec![0u8; 600];
+///     });
+///     assert_eq!(peak, 1000);
+/// }
+/// ```
+pub fn heap_peak<R>(f: impl FnOnce() -> R) -> (R, usize) {
+    heap_peak_within(usize::MAX, f)
+}
+
+/// [`heap_peak`] with the thread's live bytes capped at `limit`: a request
+/// beyond it fails, which stops the process ("memory allocation of … bytes
+/// failed") rather than letting a runaway call take the machine's memory.
+///
+/// ```
+/// #[global_allocator]
+/// static ALLOCATOR: kestrel_testkit::CountingAllocator = kestrel_testkit::CountingAllocator;
+///
+/// fn main() {
+///     let (v, peak) = kestrel_testkit::heap_peak_within(4096, || vec![1u8; 4000]);
+///     assert_eq!((v.len(), peak), (4000, 4000));
+/// }
+/// ```
+pub fn heap_peak_within<R>(limit: usize, f: impl FnOnce() -> R) -> (R, usize) {
+    LIVE.with(|l| l.set(0));
+    PEAK.with(|p| p.set(0));
+    LIMIT.with(|m| m.set(isize::try_from(limit).unwrap_or(isize::MAX)));
+    let (out, _) = heap_calls(f);
+    LIMIT.with(|m| m.set(isize::MAX));
+    (out, PEAK.with(|p| usize::try_from(p.get()).unwrap_or(0)))
 }
 
 /// The positive control of an allocation test: panics unless a box made

@@ -368,7 +368,11 @@ fn sage_husa_floor_raises_the_diagonal() {
 #[test]
 fn sage_husa_parameters_are_validated() {
     assert_eq!(param(SageHusa::<f64, 1>::new(0.0)), bad("forgetting"));
-    assert_eq!(param(SageHusa::<f64, 1>::new(1.0)), bad("forgetting"));
+    assert_eq!(
+        param(SageHusa::<f64, 1>::new(1.0 + f64::EPSILON)),
+        bad("forgetting")
+    );
+    assert!(SageHusa::<f64, 1>::new(1.0).is_ok(), "b = 1: no forgetting");
     assert_eq!(param(SageHusa::<f64, 1>::new(f64::NAN)), bad("forgetting"));
     let sh = SageHusa::<f64, 2>::new(0.95).unwrap();
     assert_eq!(

@@ -213,3 +213,42 @@ fn the_gain_takes_the_estimate_itself_with_its_factor() {
         }
     }
 }
+
+/// `b = 1` (documented as valid) forgets nothing: the weights are the
+/// formula's limit 1/(k + 1), and R̂ is the plain mean of R̂₀ and the
+/// samples (the formula itself is 0/0 there).
+#[test]
+fn forgetting_one_is_the_plain_mean() {
+    use kestrel_core::nalgebra::{Matrix1, Vector1};
+    use kestrel_models::{LinearMeasurement, LinearProcess};
+    let process = LinearProcess::new(Matrix1::new(1.0), Matrix1::new(0.0));
+    let sensor = LinearMeasurement::new(Matrix1::new(1.0), Matrix1::new(1.0));
+    let mut kf = kestrel_core::Ekf::new(Vector1::new(0.0), Matrix1::new(1.0))
+        .unwrap()
+        .with_adapter(SageHusa::new(1.0).unwrap());
+    let mut samples = vec![1.0];
+    for (k, z) in [2.0, -1.0, 0.5, 3.0].into_iter().enumerate() {
+        kf.predict(&process, 1.0).unwrap();
+        let p_prior = kf.covariance()[(0, 0)];
+        // R̂₀ is the R of the first update.
+        let r = if k == 0 {
+            1.0
+        } else {
+            kf.adapter().estimate()[(0, 0)]
+        };
+        let x_prior = kf.state()[0];
+        let report = kf.update(&sensor, &Vector1::new(z)).unwrap();
+        let w = report.adapters.weight;
+        assert!((w - 1.0 / (k as f64 + 2.0)).abs() < 1e-15, "k {k}: {w}");
+        // The sample: post-fit residual squared plus H P Hᵀ.
+        let gain = p_prior / (p_prior + r);
+        let e = (1.0 - gain) * (z - x_prior);
+        samples.push(e * e + (1.0 - gain) * p_prior);
+        let mean = samples.iter().sum::<f64>() / samples.len() as f64;
+        let estimate = kf.adapter().estimate()[(0, 0)];
+        assert!(
+            (estimate - mean).abs() < 1e-12,
+            "k {k}: {estimate} vs {mean}"
+        );
+    }
+}

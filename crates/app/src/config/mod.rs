@@ -22,7 +22,7 @@ pub(crate) mod locate;
 pub mod names;
 pub(crate) mod p0;
 pub mod process;
-pub(crate) mod read;
+pub mod read;
 pub mod scenario;
 pub mod units;
 pub(crate) mod vec3;

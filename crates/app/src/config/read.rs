@@ -11,6 +11,46 @@ use crate::config::check::Bad;
 use crate::config::locate::{line_column, Places};
 use crate::InputError;
 
+/// The most bytes a configuration or scenario file may hold: a file
+/// beyond it is refused before it is parsed.
+pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
+
+/// The text of the configuration file `path`, read once through the input
+/// layer (its tally, for the manifest) and at most [`MAX_CONFIG_BYTES`]
+/// long.
+///
+/// # Errors
+/// An [`InputError`] naming the file: it cannot be read, it is longer than
+/// the limit (saying so), or it is not UTF-8 text.
+pub fn read_config(path: &Path) -> Result<(String, kestrel_io::input::Tally), InputError> {
+    use std::io::Read;
+    let (reader, tally) = kestrel_io::input::open(path)?;
+    let mut bytes = Vec::new();
+    reader
+        .take(MAX_CONFIG_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| InputError::file(path, format!("cannot read the file: {e}")))?;
+    if bytes.len() as u64 > MAX_CONFIG_BYTES {
+        return Err(InputError::file(
+            path,
+            format!(
+                "larger than {} KiB, the limit of a configuration file (is this the right file?)",
+                MAX_CONFIG_BYTES >> 10
+            ),
+        ));
+    }
+    let text = String::from_utf8(bytes).map_err(|e| {
+        InputError::file(
+            path,
+            format!(
+                "byte {} is not UTF-8 text",
+                e.utf8_error().valid_up_to() + 1
+            ),
+        )
+    })?;
+    Ok((text, tally))
+}
+
 /// A configuration's text, its file name and where each key is in it.
 pub(crate) struct Source<'a> {
     file: &'a Path,

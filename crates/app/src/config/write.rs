@@ -20,9 +20,7 @@ impl Writer {
     /// A blank line, comment lines, then `[name]` (or `[[name]]`).
     pub fn table(&mut self, name: &str, array: bool, comment: &str) {
         self.out.push('\n');
-        for line in comment.lines() {
-            let _ = writeln!(self.out, "# {line}");
-        }
+        self.out.push_str(&comment_lines(comment));
         if array {
             let _ = writeln!(self.out, "[[{name}]]");
         } else {
@@ -37,6 +35,7 @@ impl Writer {
             let _ = writeln!(self.out, "{line}");
         } else {
             let pad = COMMENT_COLUMN.saturating_sub(line.chars().count()).max(1);
+            let comment = one_line(comment);
             let _ = writeln!(self.out, "{line}{:pad$}# {comment}", "");
         }
     }
@@ -154,17 +153,41 @@ pub(crate) fn commented_toml<T: serde::Serialize>(
         });
         match table.and_then(|t| t.get_mut(leaf)) {
             Some(toml_edit::Item::Value(v)) => {
-                v.decor_mut().set_suffix(format!(" # {comment}"));
+                v.decor_mut()
+                    .set_suffix(format!(" # {}", one_line(comment)));
             }
             Some(toml_edit::Item::Table(t)) => {
-                let lines: String = comment.lines().map(|l| format!("# {l}\n")).collect();
-                t.decor_mut().set_prefix(format!("\n{lines}"));
+                t.decor_mut()
+                    .set_prefix(format!("\n{}", comment_lines(comment)));
             }
             _ => {}
         }
     }
-    let head: String = header.iter().map(|l| format!("# {l}\n")).collect();
+    let head: String = header.iter().map(|l| comment_lines(l)).collect();
     Ok(format!("{head}{doc}"))
+}
+
+/// `text` as comment lines, one `# ` line per line of it: a line break in
+/// a path or a message cannot end the comment and start live TOML.
+fn comment_lines(text: &str) -> String {
+    text.lines()
+        .map(|l| format!("# {}\n", one_line(l)))
+        .collect()
+}
+
+/// `text` with every control character (line breaks included; TOML
+/// allows none in a comment but the tab) written as its Rust escape, so it
+/// stays on one comment line.
+fn one_line(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_control() && c != '\t' {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }
 
 /// Every inline table under `table` as a `[table]` of its own (the
@@ -177,5 +200,26 @@ fn as_tables(table: &mut toml_edit::Table) {
         if let Some(t) = item.as_table_mut() {
             as_tables(t);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_line_break_in_a_comment_stays_inside_the_comment() {
+        assert_eq!(comment_lines("a\n[output]"), "# a\n# [output]\n");
+        assert_eq!(one_line("out\n[output]\rx"), "out\\n[output]\\rx");
+        let header = vec!["Run with: --out o\n[output]\ninterval = 1e308".to_owned()];
+        let comments = vec![("a".to_owned(), "x\ny = 2".to_owned())];
+        #[derive(serde::Serialize)]
+        struct T {
+            a: f64,
+        }
+        let text = commented_toml(&T { a: 1.0 }, &header, &comments).unwrap();
+        let parsed: toml::Table = toml::from_str(&text).unwrap();
+        assert_eq!(parsed.len(), 1, "{text}");
+        assert_eq!(parsed["a"].as_float(), Some(1.0));
     }
 }

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use yaml_rust2::{Yaml, YamlLoader};
+use yaml_rust2::Yaml;
 
 use super::yaml::{list, Reader};
 use super::Imported;
@@ -84,14 +84,7 @@ type Comments = Vec<(String, String)>;
 /// assert!(i.command.starts_with("kestrel process --imu imu.txt --gnss gnss.txt"));
 /// ```
 pub fn kf_gins(text: &str, path: &Path, out: Option<&Path>) -> Result<Imported, Error> {
-    let docs = YamlLoader::load_from_str(text).map_err(|e| {
-        InputError::at(
-            path,
-            e.marker().line(),
-            e.marker().col() + 1,
-            e.info().to_owned(),
-        )
-    })?;
+    let docs = super::yaml::load(text, path)?;
     let Some(Yaml::Hash(root)) = docs.first() else {
         return Err(
             InputError::file(path, "expected a KF-GINS configuration (a YAML mapping)").into(),
@@ -360,16 +353,22 @@ fn filter(r: &Reader<'_>, c: &mut Comments) -> Result<Filter, Error> {
 }
 
 /// The `kestrel process` command for the files the YAML names (KF-GINS
-/// opens its paths from where it runs; so does this command).
+/// opens its paths from where it runs; so does this command), every path
+/// quoted for a POSIX shell so pasting it runs that one command.
 fn command(r: &Reader<'_>, out: Option<&Path>) -> Result<String, Error> {
     let config = match out {
-        Some(p) => p.display().to_string(),
+        Some(p) => p.to_string_lossy().into_owned(),
         None => "process.toml".to_owned(),
     };
-    Ok(format!(
-        "kestrel process --imu {} --gnss {} --config {config} --out {}",
-        r.string("imupath")?,
-        r.string("gnsspath")?,
-        r.string("outputpath")?
-    ))
+    let imu = r.path("imupath")?;
+    let gnss = r.path("gnsspath")?;
+    let output = r.path("outputpath")?;
+    let words = [
+        "kestrel", "process", "--imu", &imu, "--gnss", &gnss, "--config", &config, "--out", &output,
+    ];
+    shlex::try_join(words).map_err(|_| {
+        Error::Failed(format!(
+            "{config}: the output path has a NUL byte and cannot be written in a command"
+        ))
+    })
 }

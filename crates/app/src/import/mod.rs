@@ -16,7 +16,9 @@ mod yaml;
 
 use std::path::Path;
 
-use crate::{Error, InputError};
+use crate::config::read::read_config;
+use crate::transaction::{publish_file, Begin};
+use crate::Error;
 
 pub use kf_gins::kf_gins;
 
@@ -31,31 +33,26 @@ pub struct Imported {
     pub command: String,
 }
 
-/// Imports the KF-GINS configuration `file`: [`kf_gins`] on its text, and
-/// the TOML written to `out` when given (an existing `out` is replaced only
-/// with `force`; `out` must not be the input).
+/// Imports the KF-GINS configuration `file`: [`kf_gins`] on its text (read
+/// once, at most
+/// [`MAX_CONFIG_BYTES`](crate::config::read::MAX_CONFIG_BYTES) of it), and the TOML written to
+/// `out` when given, through [`publish_file`]: whole or not at all, never
+/// onto the input by any spelling of its path, an existing `out` replaced
+/// only with `force` (a symbolic link replaced itself, never written
+/// through).
 ///
 /// # Errors
 /// [`Error`] naming the file and key of what cannot be imported, or the
 /// output that cannot be written.
 pub fn import_kf_gins(file: &Path, out: Option<&Path>, force: bool) -> Result<Imported, Error> {
-    let text = std::fs::read_to_string(file)
-        .map_err(|e| InputError::file(file, format!("cannot read the file: {e}")))?;
+    let (text, _) = read_config(file)?;
     let imported = kf_gins(&text, file, out)?;
     if let Some(out) = out {
-        if std::fs::symlink_metadata(out).is_ok() && !force {
-            return Err(Error::Failed(format!(
-                "refusing to overwrite {}: it exists (pass --force to replace it)",
-                out.display()
-            )));
-        }
-        if out == file {
-            return Err(Error::Failed(format!(
-                "refusing to write {}: it is the input",
-                out.display()
-            )));
-        }
-        std::fs::write(out, &imported.toml).map_err(|e| Error::io(out, e))?;
+        let begin = Begin {
+            force,
+            ..Begin::default().input("KF-GINS configuration", file)
+        };
+        publish_file(out, imported.toml.as_bytes(), &begin)?;
     }
     Ok(imported)
 }

@@ -59,6 +59,22 @@ impl Reader<'_> {
             .ok_or_else(|| self.err(key, "expected a path"))
     }
 
+    /// A path: a string of no control characters (no file name kestrel
+    /// writes into a configuration or a command has a line break).
+    pub(super) fn path(&self, key: &str) -> Result<String, Error> {
+        let s = self.string(key)?;
+        if let Some(c) = s.chars().find(|c| c.is_control()) {
+            return Err(self.err(
+                key,
+                format!(
+                    "the path has a control character ({}); rename the file",
+                    c.escape_default()
+                ),
+            ));
+        }
+        Ok(s)
+    }
+
     pub(super) fn vec3_of(&self, y: &Yaml) -> Option<[f64; 3]> {
         let v = y.as_vec()?;
         if v.len() != 3 {
@@ -96,4 +112,50 @@ impl Reader<'_> {
         }
         Ok(v[0])
     }
+}
+
+/// The deepest nesting of mappings and sequences a KF-GINS file may have
+/// (KF-GINS's own files nest two deep).
+pub(super) const MAX_YAML_DEPTH: usize = 16;
+
+/// Reads `text` as YAML after a first pass over its events that refuses
+/// anchors' aliases (`*name`: a few hundred bytes of them expand to
+/// gigabytes) and nesting deeper than [`MAX_YAML_DEPTH`], before anything
+/// is built.
+pub(super) fn load(text: &str, path: &Path) -> Result<Vec<Yaml>, Error> {
+    use yaml_rust2::parser::{Event, Parser};
+    let at = |m: yaml_rust2::scanner::Marker, msg: String| -> Error {
+        InputError::at(path, m.line(), m.col() + 1, msg).into()
+    };
+    let mut parser = Parser::new_from_str(text);
+    let mut depth = 0usize;
+    loop {
+        let (event, mark) = parser
+            .next_token()
+            .map_err(|e| at(*e.marker(), e.info().to_owned()))?;
+        match event {
+            Event::StreamEnd => break,
+            Event::Alias(_) => {
+                return Err(at(
+                    mark,
+                    "an alias (*name): kestrel does not expand YAML aliases; write the value out"
+                        .into(),
+                ));
+            }
+            Event::MappingStart(..) | Event::SequenceStart(..) => {
+                depth += 1;
+                if depth > MAX_YAML_DEPTH {
+                    return Err(at(
+                        mark,
+                        format!(
+                            "nested more than {MAX_YAML_DEPTH} deep, the limit of a KF-GINS file"
+                        ),
+                    ));
+                }
+            }
+            Event::MappingEnd | Event::SequenceEnd => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    yaml_rust2::YamlLoader::load_from_str(text).map_err(|e| at(*e.marker(), e.info().to_owned()))
 }

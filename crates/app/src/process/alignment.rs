@@ -24,15 +24,16 @@
 //!   window's mean rate less the Earth rate in the body axes (with the
 //!   aligned attitude), added to `initial.gyro_bias`.
 
-use std::fs::File;
-use std::io::BufReader;
+use kestrel_io::input::Input as In;
 use std::path::Path;
 
 use kestrel::nav::measurement::GnssFix;
 use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::{Euler, ImuIncrement, NavState};
 
-use super::pipeline::GnssInput;
+use super::outage::Outage;
+use super::pipeline::GnssSource;
+use super::setup::Readers;
 use crate::config::process::{AlignmentSettings, Settings, YawSource};
 use crate::{Error, InputError};
 use kestrel_io::gins::{ImuReader, ImuRecord};
@@ -58,17 +59,21 @@ pub struct AlignmentReport {
     pub start: f64,
 }
 
-/// Aligns `settings.start` from the IMU file (and the GNSS file for the
-/// course) before the run.
+/// Aligns `settings.start` from the IMU stream (and the GNSS stream for the
+/// course) before the run, in the run's own readers: the IMU samples read
+/// past the new start go back into `readers.imu_ahead`, the GNSS fixes it
+/// looked at stay buffered for the pass, and fixes in `outages` are never
+/// used (as if those lines were deleted).
 pub(crate) fn align(
-    imu: &Path,
-    gnss: Option<&Path>,
+    readers: &mut Readers,
+    outages: &[Outage],
     a: &AlignmentSettings,
     settings: &mut Settings,
 ) -> Result<AlignmentReport, Error> {
     let start = settings.start.time;
-    let mut reader = ImuReader::open_with_format(imu, &settings.imu_format, settings.week, start)?;
-    let window = StaticWindow::read(&mut reader, start, start + a.static_time)?;
+    let imu = readers.imu.path().to_path_buf();
+    let imu = imu.as_path();
+    let window = StaticWindow::read(&mut readers.imu, start, start + a.static_time)?;
     let spread = window.spread(imu, a, start)?;
     let level = window.level();
     let mut report = AlignmentReport {
@@ -82,14 +87,20 @@ pub(crate) fn align(
         start: window.end,
     };
     let new_start = match a.yaw {
-        YawSource::Gyrocompass => gyrocompass(imu, &window, level, settings)?,
+        YawSource::Gyrocompass => {
+            readers.imu_ahead.extend(window.after);
+            gyrocompass(imu, &window, level, settings)?
+        }
         YawSource::GnssCourse => {
-            let Some(gnss) = gnss else {
+            let Some(gnss) = readers.gnss.as_mut() else {
                 return Err(Error::Failed(
                     "alignment: yaw = \"gnss-course\" needs a GNSS file (--gnss)".into(),
                 ));
             };
-            let (state, course_fix) = gnss_course(gnss, &mut reader, &window, level, a, settings)?;
+            let course = Course { a, outages };
+            let (state, course_fix, next) =
+                gnss_course(gnss, &mut readers.imu, &window, level, &course, settings)?;
+            readers.imu_ahead.extend(next);
             report.course_fix = Some(course_fix);
             state
         }
@@ -130,7 +141,7 @@ struct StaticWindow {
 
 impl StaticWindow {
     /// Sums the samples of `reader` after `start` up to `end`.
-    fn read(reader: &mut ImuReader<BufReader<File>>, start: f64, end: f64) -> Result<Self, Error> {
+    fn read(reader: &mut ImuReader<In>, start: f64, end: f64) -> Result<Self, Error> {
         let mut w = Self {
             dtheta: Vector3::zeros(),
             dvel: Vector3::zeros(),
@@ -253,20 +264,31 @@ fn gyrocompass(
     ))
 }
 
+/// What the course alignment looks for: the settings and the outages it
+/// must skip.
+struct Course<'a> {
+    a: &'a AlignmentSettings,
+    outages: &'a [Outage],
+}
+
+/// The start a GNSS course gives: the state, the fix's (time, horizontal
+/// speed), and the first IMU sample after the start (read ahead).
+type CourseStart = (NavState, (f64, f64), Option<ImuRecord>);
+
 /// The start at the last IMU sample at or before the first fix after the
 /// window fast enough for a course: levelled by `(roll, pitch)`, the yaw
 /// from the course, the fix's velocity and its position moved back to
 /// that sample and from the antenna to the IMU. Also the fix's time and
-/// horizontal speed.
+/// horizontal speed, and the first IMU sample after the start (read ahead).
 fn gnss_course(
-    gnss: &Path,
-    reader: &mut ImuReader<BufReader<File>>,
+    gnss: &mut GnssSource,
+    reader: &mut ImuReader<In>,
     window: &StaticWindow,
     (roll, pitch): (f64, f64),
-    a: &AlignmentSettings,
+    course: &Course<'_>,
     settings: &Settings,
-) -> Result<(NavState, (f64, f64)), Error> {
-    let fix = moving_fix(gnss, window.end, a, settings)?;
+) -> Result<CourseStart, Error> {
+    let fix = moving_fix(gnss, window.end, course)?;
     let v = fix.vel.unwrap_or_default();
     // The last IMU sample at or before the fix.
     let mut t = window.end;
@@ -285,35 +307,48 @@ fn gnss_course(
     let state = NavState::new(t, at_antenna, v, att);
     let lever = state.att * settings.lever_arm;
     let pos = earth.displace(&at_antenna, &(-lever));
-    Ok((NavState { pos, ..state }, (fix.time, v.x.hypot(v.y))))
+    Ok((NavState { pos, ..state }, (fix.time, v.x.hypot(v.y)), next))
 }
 
-/// The first fix after `after` whose horizontal speed reaches
-/// `a.min_speed`; an error when there is none or the fixes have no
-/// velocity.
-fn moving_fix(
-    gnss: &Path,
-    after: f64,
-    a: &AlignmentSettings,
-    settings: &Settings,
-) -> Result<GnssFix, Error> {
-    let mut fixes = GnssInput::open(gnss, &settings.gnss_format, settings.week)?;
+/// The first fix after `after` outside the outages whose horizontal speed
+/// reaches `min_speed`, looked at ahead in the pass's GNSS stream; an
+/// error when there is none or the fixes have no velocity.
+fn moving_fix(gnss: &mut GnssSource, after: f64, course: &Course<'_>) -> Result<GnssFix, Error> {
+    let a = course.a;
+    let mut i = 0;
     loop {
-        let Some(fix) = fixes.next().transpose()? else {
+        let fix = if i < MAX_LOOKAHEAD {
+            gnss.ahead(i)?.copied()
+        } else {
+            None
+        };
+        i += 1;
+        let Some(fix) = fix else {
+            if let Some(e) = gnss.take_failure() {
+                return Err(e.into());
+            }
             return Err(InputError::file(
-                gnss,
+                gnss.path(),
                 format!(
-                    "alignment: no fix after {after} s with a horizontal speed of \
-                     alignment.min_speed = {} m/s or more (and a velocity)",
-                    a.min_speed
+                    "alignment: no fix after {after} s outside the outages with a horizontal \
+                     speed of alignment.min_speed = {} m/s or more (and a velocity){}",
+                    a.min_speed,
+                    if i > MAX_LOOKAHEAD {
+                        format!(" in the first {MAX_LOOKAHEAD} fixes")
+                    } else {
+                        String::new()
+                    }
                 ),
             )
             .into());
         };
+        if course.outages.iter().any(|o| o.contains(fix.time)) {
+            continue;
+        }
         let Some(v) = fix.vel else {
             if fix.time > after {
                 return Err(InputError::file(
-                    gnss,
+                    gnss.path(),
                     "alignment: yaw = \"gnss-course\" needs GNSS velocity (13-column lines)",
                 )
                 .into());
@@ -325,3 +360,7 @@ fn moving_fix(
         }
     }
 }
+
+/// The most GNSS fixes the course alignment looks ahead for a moving one
+/// (they stay in memory for the pass: about 100 MB at most).
+const MAX_LOOKAHEAD: usize = 1_000_000;

@@ -303,6 +303,9 @@ where
     let Some(record) = job.smoother.take() else {
         return Ok(());
     };
+    if let Some(e) = job.sink.evaluation.as_mut() {
+        e.flush_truth_copy()?;
+    }
     if engine.recording_overrun() > 0 {
         return Err(Error::Failed(format!(
             "internal error: {} covariance epochs were not recorded for the smoother",

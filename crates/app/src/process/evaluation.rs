@@ -10,8 +10,9 @@
 //! epoch: errors stream to `errors.csv`, statistics are running sums, and
 //! the plots keep a bounded, evenly thinned subset.
 
+use kestrel_io::input::Input as In;
 use std::fs::File;
-use std::io::{BufReader, BufWriter};
+use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 
 use crate::experiment::{Adaptation, EpochRecord, PositionAxes};
@@ -40,71 +41,185 @@ struct Reference {
     full: bool,
 }
 
-/// The reader of the truth file's format.
+/// The reader of the truth: the file in its format, or the epochs an
+/// earlier comparison of the same run read, replayed from its scratch copy.
 enum TruthReader {
-    Nav(NavReader<BufReader<File>>),
-    Rtklib(RtklibReader<BufReader<File>>),
+    Nav(NavReader<In>),
+    Rtklib(RtklibReader<In>),
+    Replay {
+        reader: BufReader<File>,
+        /// The truth file's name, for errors.
+        path: std::path::PathBuf,
+    },
 }
 
-/// The truth file, read forward as the run goes.
+/// The truth, read forward as the run goes.
 pub(crate) struct Truth {
     reader: TruthReader,
     next: Option<Reference>,
     /// The week of the file's first line: later weeks continue its
     /// seconds of week (as the IMU and GNSS times do across a rollover).
     first_week: Option<u32>,
+    /// Where every epoch read is copied for a replay (the smoother's
+    /// comparison), so the file is read once.
+    tee: Option<(BufWriter<File>, std::path::PathBuf)>,
 }
 
+/// Numbers in a replayed epoch: time, latitude, longitude, height,
+/// velocity (3), attitude quaternion (4), whether full.
+const REPLAY_LEN: usize = 12;
+
 impl Truth {
-    /// The truth file at `path` in `format`; RTKLIB times in seconds of
-    /// GPS week `week0`.
-    pub(crate) fn open(path: &Path, format: &TruthFormat, week0: u32) -> Result<Self, InputError> {
-        Ok(Self {
+    /// The truth file `reader` (named `path`) in `format`; RTKLIB times in
+    /// seconds of GPS week `week0`.
+    pub(crate) fn new(reader: In, path: &Path, format: &TruthFormat, week0: u32) -> Self {
+        Self {
             reader: match format {
-                TruthFormat::Nav => TruthReader::Nav(NavReader::open(path)?),
+                TruthFormat::Nav => TruthReader::Nav(NavReader::new(reader, path)),
                 TruthFormat::Rtklib { quality } => {
-                    TruthReader::Rtklib(RtklibReader::open(path, week0, quality)?)
+                    TruthReader::Rtklib(RtklibReader::new(reader, path, week0, quality))
                 }
             },
             next: None,
             first_week: None,
+            tee: None,
+        }
+    }
+
+    /// The same truth, every epoch it reads also written to `copy` (a
+    /// scratch file) for [`replay`](Self::replay).
+    pub(crate) fn tee(mut self, copy: std::path::PathBuf) -> Result<Self, Error> {
+        let file = super::sink::create_output(&copy)?;
+        self.tee = Some((BufWriter::with_capacity(1 << 16, file), copy));
+        Ok(self)
+    }
+
+    /// The epochs a [`tee`](Self::tee)'d truth wrote to `copy`, in order
+    /// (`original` names the truth file in errors). The copy may still be
+    /// growing when this opens it: it is read after the forward pass.
+    pub(crate) fn replay(copy: &Path, original: Option<&Path>) -> Result<Self, Error> {
+        // The copy is created here, empty, if the forward comparison has
+        // not made it yet; the forward pass appends to the same file.
+        let file = std::fs::OpenOptions::new()
+            .read(true)
+            .write(true)
+            .create(true)
+            .truncate(false)
+            .open(copy)
+            .map_err(|e| Error::io(copy, e))?;
+        Ok(Self {
+            reader: TruthReader::Replay {
+                reader: BufReader::with_capacity(1 << 16, file),
+                path: original.unwrap_or(copy).to_path_buf(),
+            },
+            next: None,
+            first_week: None,
+            tee: None,
         })
+    }
+
+    /// Flushes the copy of a tee'd truth (before its replay is read).
+    pub(crate) fn flush_copy(&mut self) -> Result<(), Error> {
+        if let Some((w, path)) = self.tee.as_mut() {
+            w.flush().map_err(|e| Error::io(path, e))?;
+        }
+        Ok(())
     }
 
     /// The next truth epoch, not consumed.
     fn peek(&mut self) -> Result<Option<Reference>, InputError> {
         if self.next.is_none() {
-            self.next = match &mut self.reader {
-                TruthReader::Nav(r) => match r.next() {
-                    Some(r) => {
-                        let mut r = r?;
-                        let first = *self.first_week.get_or_insert(r.week);
-                        r.state.time += f64::from(r.week.saturating_sub(first)) * WEEK_SECONDS;
-                        Some(Reference {
-                            state: r.state,
-                            full: true,
-                        })
-                    }
-                    None => None,
-                },
-                TruthReader::Rtklib(r) => match r.next() {
-                    Some(f) => {
-                        let f = f?;
-                        Some(Reference {
-                            state: NavState {
-                                time: f.time,
-                                pos: f.pos,
-                                vel: Vector3::zeros(),
-                                att: UnitQuaternion::identity(),
-                            },
-                            full: false,
-                        })
-                    }
-                    None => None,
-                },
-            };
+            self.next = self.read()?;
+            if let (Some(r), Some((w, path))) = (self.next, self.tee.as_mut()) {
+                let s = &r.state;
+                let q = s.att.quaternion();
+                let values = [
+                    s.time,
+                    s.pos.lat,
+                    s.pos.lon,
+                    s.pos.h,
+                    s.vel.x,
+                    s.vel.y,
+                    s.vel.z,
+                    q.w,
+                    q.i,
+                    q.j,
+                    q.k,
+                    f64::from(u8::from(r.full)),
+                ];
+                for v in values {
+                    w.write_all(&v.to_le_bytes()).map_err(|e| {
+                        InputError::file(
+                            path,
+                            format!("cannot copy the truth for the smoother: {e}"),
+                        )
+                    })?;
+                }
+            }
         }
         Ok(self.next)
+    }
+
+    /// The next epoch from the reader.
+    fn read(&mut self) -> Result<Option<Reference>, InputError> {
+        Ok(match &mut self.reader {
+            TruthReader::Nav(r) => match r.next() {
+                Some(r) => {
+                    let mut r = r?;
+                    let first = *self.first_week.get_or_insert(r.week);
+                    r.state.time += f64::from(r.week.saturating_sub(first)) * WEEK_SECONDS;
+                    Some(Reference {
+                        state: r.state,
+                        full: true,
+                    })
+                }
+                None => None,
+            },
+            TruthReader::Rtklib(r) => match r.next() {
+                Some(f) => {
+                    let f = f?;
+                    Some(Reference {
+                        state: NavState {
+                            time: f.time,
+                            pos: f.pos,
+                            vel: Vector3::zeros(),
+                            att: UnitQuaternion::identity(),
+                        },
+                        full: false,
+                    })
+                }
+                None => None,
+            },
+            TruthReader::Replay { reader, path } => {
+                let mut bytes = [0u8; 8 * REPLAY_LEN];
+                match reader.read_exact(&mut bytes) {
+                    Ok(()) => {}
+                    Err(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => return Ok(None),
+                    Err(e) => {
+                        return Err(InputError::file(
+                            path,
+                            format!("cannot read the truth's copy: {e}"),
+                        ));
+                    }
+                }
+                let v: Vec<f64> = bytes
+                    .chunks_exact(8)
+                    .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
+                    .collect();
+                let att = UnitQuaternion::new_unchecked(kestrel::nav::nalgebra::Quaternion::new(
+                    v[7], v[8], v[9], v[10],
+                ));
+                Some(Reference {
+                    state: NavState {
+                        time: v[0],
+                        pos: kestrel::nav::Geodetic::new(v[1], v[2], v[3]),
+                        vel: Vector3::new(v[4], v[5], v[6]),
+                        att,
+                    },
+                    full: v[11] != 0.0,
+                })
+            }
+        })
     }
 }
 
@@ -210,7 +325,7 @@ pub(crate) struct EvaluationSetup {
 
 impl Evaluation {
     pub(crate) fn new(s: EvaluationSetup) -> Result<Self, Error> {
-        let file = super::sink::create_partial(&s.csv_path)?;
+        let file = super::sink::create_output(&s.csv_path)?;
         let csv =
             EpochCsvWriter::with_update_column(BufWriter::with_capacity(1 << 16, file), s.axes)
                 .map_err(|e| Error::io(&s.csv_path, e))?;
@@ -359,9 +474,14 @@ impl Evaluation {
 
     /// Flushes the error file; puts it in place when the run `succeeded`,
     /// otherwise removes it.
+    /// Flushes the truth's copy for the smoother's replay.
+    pub(crate) fn flush_truth_copy(&mut self) -> Result<(), Error> {
+        self.truth.flush_copy()
+    }
+
     pub(crate) fn finish(&mut self, succeeded: bool) -> Result<(), Error> {
         let flushed = self.csv.flush().map_err(|e| Error::io(&self.csv_path, e));
-        super::sink::settle(&self.csv_path, succeeded && flushed.is_ok())?;
+        super::sink::keep_or_discard(&self.csv_path, succeeded && flushed.is_ok())?;
         flushed
     }
 }

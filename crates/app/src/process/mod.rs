@@ -34,9 +34,11 @@ use std::path::PathBuf;
 
 use crate::experiment::{EpochRecord, PositionAxes};
 use crate::scenario::FilterKind;
+use crate::transaction::{Begin, Cancel, InputRecord, Provenance, Transaction};
 use crate::Error;
 
 pub use crate::config::process::Settings;
+use crate::progress::Cancellable;
 pub use crate::progress::{Progress, Silent};
 pub use alignment::AlignmentReport;
 pub use consistency::{chi_square_band, Consistency};
@@ -90,11 +92,6 @@ pub struct Inputs {
     pub out: PathBuf,
     /// GNSS fixes at `start ≤ t < end` are ignored (`--outage`).
     pub outages: Vec<Outage>,
-    /// File names the caller writes into `out` after the run (plots, say):
-    /// checked against the inputs and freed of symbolic links like the
-    /// run's own outputs. Plain names only: one with a folder, `.` or `..`
-    /// is an error.
-    pub also_written: Vec<String>,
     /// Also run the RTS smoother over the forward pass (`--smooth`):
     /// writes `smoothed.nav`, `smoothed.csv`, `smoothed_imu_errors.*`,
     /// `smoothed_std.*` and, with a truth, `errors_smoothed.csv`.
@@ -117,7 +114,6 @@ impl Inputs {
             config: config.into(),
             out: out.into(),
             outages: Vec::new(),
-            also_written: Vec::new(),
             smooth: false,
         }
     }
@@ -159,6 +155,8 @@ pub struct Processed {
     pub track: Track,
     /// The IMU error estimates and σ over time.
     pub states: StateTraces,
+    /// What the run read and how it was configured, for the manifest.
+    pub provenance: Provenance,
 }
 
 /// What a run did.
@@ -240,25 +238,107 @@ pub struct ProcessReport {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn process(inputs: &Inputs, progress: &mut dyn Progress) -> Result<Processed, Error> {
-    let mut settings = crate::config::process::load(&inputs.config)?;
+    let mut tx = begin(inputs, false, &["process".to_owned()])?;
+    let processed = run(inputs, &mut tx, progress, &Cancel::default())?;
+    tx.commit(processed.provenance.clone())?;
+    Ok(processed)
+}
+
+/// The output transaction of a run of `inputs` into `inputs.out`,
+/// recording `command`: the inputs are named by their flags, so none of
+/// them can be replaced; `force` lets the run replace files in the folder
+/// that no earlier run wrote.
+///
+/// # Errors
+/// As [`Transaction::begin`].
+pub fn begin(inputs: &Inputs, force: bool, command: &[String]) -> Result<Transaction, Error> {
+    let mut begin = Begin {
+        command: command.to_vec(),
+        force,
+        ..Begin::default()
+    }
+    .input("--imu", &inputs.imu)
+    .input("--config", &inputs.config);
+    if let Some(p) = &inputs.gnss {
+        begin = begin.input("--gnss", p);
+    }
+    if let Some(p) = &inputs.truth {
+        begin = begin.input("--truth", p);
+    }
+    if let OdometerInput::File(p) = &inputs.odometer {
+        begin = begin.input("--odometer", p);
+    }
+    Transaction::begin(&inputs.out, begin)
+}
+
+/// Processes `inputs` into the transaction `tx` (the caller commits it,
+/// after adding files of its own such as figures): every input read once
+/// as a stream, `cancel` checked at every progress report.
+///
+/// # Errors
+/// As [`process`], and [`Error::Cancelled`] once `cancel` is set.
+pub fn run(
+    inputs: &Inputs,
+    tx: &mut Transaction,
+    progress: &mut dyn Progress,
+    cancel: &Cancel,
+) -> Result<Processed, Error> {
+    let (mut settings, config) = crate::config::process::load_recorded(&inputs.config)?;
+    setup::check_odometer(inputs, &settings)?;
+    let mut readers = setup::Readers::open(inputs, &settings)?;
     // The alignment sets the initial state (and may move the start) that
-    // everything after it reads.
+    // everything after it reads, from the same streams.
     let alignment = match settings.alignment {
         Some(a) => Some(alignment::align(
-            &inputs.imu,
-            inputs.gnss.as_deref(),
+            &mut readers,
+            &inputs.outages,
             &a,
             &mut settings,
         )?),
         None => None,
     };
-    setup::check_odometer(inputs, &settings)?;
-    let readers = setup::Readers::open(inputs, &settings)?;
-    setup::prepare_output(inputs)?;
     let layout = readers.layout;
-    let mut job = setup::job(inputs, &settings, readers, progress)?;
+    let tallies = std::mem::take(&mut readers.tallies);
+    let dir = tx.scratch_dir().to_path_buf();
+    let mut progress = Cancellable::new(progress, cancel);
+    let mut job = setup::job(inputs, &settings, readers, &dir, &mut progress)?;
     let outcome = dispatch(&settings, layout, &mut job);
-    results::finish(inputs, &settings, job, outcome, alignment)
+    let mut processed = results::finish(inputs, &settings, job, outcome, alignment)?;
+    cancel.check()?;
+    let mut records: Vec<InputRecord> = tallies
+        .iter()
+        .map(|(flag, path, t)| InputRecord {
+            flag: flag.clone(),
+            path: path.display().to_string(),
+            bytes: t.bytes(),
+            sha256: t.sha256(),
+        })
+        .collect();
+    records.push(InputRecord {
+        flag: "--config".into(),
+        path: inputs.config.display().to_string(),
+        bytes: config.tally.bytes(),
+        sha256: config.tally.sha256(),
+    });
+    // The files in the order the run wrote them, under their final names.
+    let adopt = |files: &mut Vec<PathBuf>, tx: &mut Transaction| -> Result<(), Error> {
+        for f in std::mem::take(files) {
+            let name = f.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+            files.push(tx.adopt(name)?);
+        }
+        Ok(())
+    };
+    adopt(&mut processed.report.files, tx)?;
+    if let Some(smoothed) = processed.report.smoothed.as_mut() {
+        adopt(&mut smoothed.files, tx)?;
+    }
+    processed.provenance = Provenance {
+        inputs: records,
+        configuration: Some(config.resolved),
+        seeds: Vec::new(),
+        limits: Vec::new(),
+    };
+    Ok(processed)
 }
 
 /// Names of the position axes.

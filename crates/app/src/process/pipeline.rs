@@ -1,9 +1,8 @@
 //! The processing loop: IMU samples in file order, the aiding due at each,
 //! the outputs — one monomorphised loop per filter type.
 
+use kestrel_io::input::Input as In;
 use std::collections::VecDeque;
-use std::fs::File;
-use std::io::BufReader;
 use std::path::{Path, PathBuf};
 
 use crate::experiment::Adaptation;
@@ -36,7 +35,7 @@ use kestrel_io::gins::{
 /// The inputs of a run and its outputs: what the forward pass reads,
 /// writes and counts.
 pub(crate) struct Job<'p> {
-    pub imu: ImuReader<BufReader<File>>,
+    pub imu: ImuReader<In>,
     pub gnss: Option<GnssSource>,
     /// Odometer update rate (Hz) when odometer speeds are used.
     pub odometer_rate: Option<f64>,
@@ -93,7 +92,7 @@ pub const ODOMETER_MAX_AGE: f64 = 1.0;
 /// The odometer's own file, read forward: the speed at a time is the
 /// latest reading at or before it.
 pub(crate) struct OdometerFile {
-    reader: OdometerReader<BufReader<File>>,
+    reader: OdometerReader<In>,
     ahead: Option<SpeedRecord>,
     latest: Option<SpeedRecord>,
     /// Readings that became the latest (reached by the run).
@@ -101,7 +100,7 @@ pub(crate) struct OdometerFile {
 }
 
 impl OdometerFile {
-    pub(crate) fn new(reader: OdometerReader<BufReader<File>>) -> Self {
+    pub(crate) fn new(reader: OdometerReader<In>) -> Self {
         Self {
             reader,
             ahead: None,
@@ -139,25 +138,21 @@ impl OdometerFile {
 /// The GNSS file in the format the configuration names.
 pub(crate) enum GnssInput {
     /// The GINS text format.
-    Gins(GnssReader<BufReader<File>>),
+    Gins(GnssReader<In>),
     /// RTKLIB `.pos`.
-    Rtklib(RtklibReader<BufReader<File>>),
+    Rtklib(RtklibReader<In>),
 }
 
 impl GnssInput {
-    /// Opens the GNSS file at `path` in `format`; times in seconds of GPS
-    /// week `week0`.
-    pub(crate) fn open(
-        path: &std::path::Path,
-        format: &GnssFormat,
-        week0: u32,
-    ) -> Result<Self, InputError> {
-        Ok(match format {
-            GnssFormat::Gins => Self::Gins(GnssReader::open(path)?),
+    /// The GNSS file `reader` (named `path`) in `format`; times in seconds
+    /// of GPS week `week0`.
+    pub(crate) fn new(reader: In, path: &std::path::Path, format: &GnssFormat, week0: u32) -> Self {
+        match format {
+            GnssFormat::Gins => Self::Gins(GnssReader::new(reader, path)),
             GnssFormat::Rtklib { quality } => {
-                Self::Rtklib(RtklibReader::open(path, week0, quality)?)
+                Self::Rtklib(RtklibReader::new(reader, path, week0, quality))
             }
-        })
+        }
     }
 
     fn last_line(&self) -> Option<usize> {
@@ -194,10 +189,15 @@ impl Iterator for GnssInput {
     }
 }
 
-/// The GNSS file read one fix ahead, each fix with its line.
+/// The GNSS file read ahead, each fix with its line: the alignment and
+/// the gap threshold look ahead (the fixes they see stay buffered) and the
+/// pass then takes every fix once, in order. The file is read once.
 pub(crate) struct GnssSource {
     reader: GnssInput,
-    ahead: Option<(GnssFix, usize)>,
+    ahead: VecDeque<(GnssFix, usize)>,
+    /// The error of the line after the buffered fixes: reported when the
+    /// pass reaches it, not when a look-ahead does.
+    failed: Option<InputError>,
 }
 
 impl GnssSource {
@@ -206,31 +206,67 @@ impl GnssSource {
     pub(crate) fn open(reader: GnssInput) -> Result<Self, InputError> {
         let mut s = Self {
             reader,
-            ahead: None,
+            ahead: VecDeque::new(),
+            failed: None,
         };
-        s.fill()?;
+        s.fill(1);
+        s.report_at_front()?;
         Ok(s)
     }
 
-    fn fill(&mut self) -> Result<(), InputError> {
-        if self.ahead.is_none()
-            && let Some(fix) = self.reader.next().transpose()?
-        {
-            self.ahead = Some((fix, self.reader.last_line().unwrap_or(0)));
+    /// Reads ahead until `n` fixes are buffered, the file ends or a line
+    /// is bad (kept in `failed`).
+    fn fill(&mut self, n: usize) {
+        while self.ahead.len() < n && self.failed.is_none() {
+            match self.reader.next() {
+                Some(Ok(fix)) => {
+                    let line = self.reader.last_line().unwrap_or(0);
+                    self.ahead.push_back((fix, line));
+                }
+                Some(Err(e)) => self.failed = Some(e),
+                None => return,
+            }
         }
-        Ok(())
+    }
+
+    /// The bad line's error once every fix before it is consumed.
+    fn report_at_front(&mut self) -> Result<(), InputError> {
+        match self.failed.take() {
+            Some(e) if self.ahead.is_empty() => Err(e),
+            failed => {
+                self.failed = failed;
+                Ok(())
+            }
+        }
+    }
+
+    /// The error of a bad line a look-ahead stopped at (taken: a caller
+    /// that cannot go on without the fixes past it reports it now).
+    pub(crate) fn take_failure(&mut self) -> Option<InputError> {
+        self.failed.take()
     }
 
     /// The next fix, not consumed.
     pub(crate) fn peek(&mut self) -> Result<Option<&GnssFix>, InputError> {
-        self.fill()?;
-        Ok(self.ahead.as_ref().map(|(f, _)| f))
+        self.fill(1);
+        self.report_at_front()?;
+        Ok(self.ahead.front().map(|(f, _)| f))
+    }
+
+    /// The `i`-th fix ahead (0 is the next), not consumed: read into the
+    /// buffer if need be. `None` past the end of the file and past a bad
+    /// line (whose error the pass gets when it reaches it).
+    pub(crate) fn ahead(&mut self, i: usize) -> Result<Option<&GnssFix>, InputError> {
+        self.fill(i + 1);
+        self.report_at_front()?;
+        Ok(self.ahead.get(i).map(|(f, _)| f))
     }
 
     /// The next fix and its line.
     fn take(&mut self) -> Result<Option<(GnssFix, usize)>, InputError> {
-        self.fill()?;
-        Ok(self.ahead.take())
+        self.fill(1);
+        self.report_at_front()?;
+        Ok(self.ahead.pop_front())
     }
 
     /// The file's name.
@@ -249,17 +285,21 @@ impl<'p> Job<'p> {
     /// `inputs` names, whose file is opened here) into `sink` and the
     /// smoother's record, as `settings` say.
     pub(crate) fn new(
-        imu: ImuReader<BufReader<File>>,
-        gnss: Option<GnssSource>,
+        readers: super::setup::Readers,
         sink: Sink<'p>,
         smoother: Option<ForwardRecord>,
         settings: &Settings,
         inputs: &Inputs,
+        dir: &std::path::Path,
     ) -> Result<Self, Error> {
-        let odometer_file = match &inputs.odometer {
-            OdometerInput::File(p) => Some(OdometerFile::new(OdometerReader::open(p)?)),
-            _ => None,
-        };
+        let super::setup::Readers {
+            imu,
+            imu_ahead,
+            gnss,
+            odometer,
+            ..
+        } = readers;
+        let odometer_file = odometer.map(OdometerFile::new);
         Ok(Self {
             imu,
             gnss,
@@ -275,10 +315,10 @@ impl<'p> Job<'p> {
             error_model: settings.error_model,
             timing_rule: settings.timing,
             timing: TimingReport::default(),
-            pending: VecDeque::new(),
+            pending: imu_ahead,
             smoother,
             smoothed: None,
-            out: inputs.out.clone(),
+            out: dir.to_path_buf(),
             output_interval: settings.output_interval,
             states: None,
             fix_track: Thinned::default(),
@@ -289,8 +329,7 @@ impl<'p> Job<'p> {
 
     /// The first IMU record after the start time.
     fn first_imu(&mut self) -> Result<ImuRecord, Error> {
-        for r in self.imu.by_ref() {
-            let r = r?;
+        while let Some(r) = self.next_imu()? {
             if r.time > self.start {
                 return Ok(r);
             }
@@ -313,7 +352,8 @@ impl<'p> Job<'p> {
     /// timing from their median interval.
     fn start_timing(&mut self) -> Result<ImuTiming, Error> {
         let first = self.first_imu()?;
-        self.pending.push_back(first);
+        // Back at the front: anything still read ahead comes after it.
+        self.pending.push_front(first);
         while self.pending.len() <= NOMINAL_SAMPLES {
             match self.imu.next().transpose()? {
                 Some(r) => self.pending.push_back(r),

@@ -24,8 +24,9 @@ pub(super) fn finish(
 ) -> Result<Processed, Error> {
     // Nothing compared is an error, never a row of zeros.
     let outcome = outcome.and_then(|()| check_compared(&mut job, inputs, settings));
-    let (mut files, mut states) = close(&mut job, &inputs.out, outcome)?;
-    let (statistics, traces) = compared(&mut job, &inputs.out, &mut files)?;
+    let dir = job.out.clone();
+    let (mut files, mut states) = close(&mut job, &dir, outcome)?;
+    let (statistics, traces) = compared(&mut job, &dir, &mut files)?;
     let report = report(&mut job, settings, alignment, statistics, files);
     states.smoothed = std::mem::take(&mut job.smoothed_traces.states);
     let track = track(&job, inputs, settings);
@@ -34,6 +35,7 @@ pub(super) fn finish(
         traces,
         track,
         states,
+        provenance: Default::default(),
     })
 }
 
@@ -209,14 +211,13 @@ fn write_drift_csv(path: &Path, drift: &[WindowDrift]) -> Result<(), Error> {
             pair(w.vertical)
         );
     }
-    write_atomically(path, &text)
+    write_file(path, &text)
 }
 
-/// Writes `text` to `path` through a partial file renamed into place.
-fn write_atomically(path: &Path, text: &str) -> Result<(), Error> {
-    let mut f = super::sink::create_partial(path)?;
-    std::io::Write::write_all(&mut f, text.as_bytes()).map_err(|e| Error::io(path, e))?;
-    super::sink::settle(path, true)
+/// Writes `text` to the output file `path` (in the run's scratch folder).
+fn write_file(path: &Path, text: &str) -> Result<(), Error> {
+    let mut f = super::sink::create_output(path)?;
+    std::io::Write::write_all(&mut f, text.as_bytes()).map_err(|e| Error::io(path, e))
 }
 
 /// `error_summary.csv`: RMS and max |error| per quantity and axis, over
@@ -250,5 +251,5 @@ fn write_summary_csv(path: &Path, sets: &[(&str, Option<ErrorStats>)]) -> Result
             );
         }
     }
-    write_atomically(path, &text)
+    write_file(path, &text)
 }

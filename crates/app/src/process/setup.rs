@@ -6,11 +6,12 @@
 //! table, an unreadable input, an output that would replace an input) is
 //! refused before the first result file is created.
 
-use std::fs::File;
-use std::io::BufReader;
-use std::path::{Component, Path};
+use kestrel_io::input::Input as In;
+use std::collections::VecDeque;
+use std::path::{Path, PathBuf};
 
-use kestrel_io::gins::{last_time, ImuReader};
+use kestrel_io::gins::{last_time, ImuReader, ImuRecord, OdometerReader};
+use kestrel_io::input::Tally;
 
 use super::dispatch::GnssLayout;
 use super::drift::{gap_threshold, DriftTable};
@@ -18,7 +19,6 @@ use super::evaluation::{Evaluation, EvaluationSetup, Truth};
 use super::pipeline::{GnssInput, GnssSource, Job};
 use super::sink::{Sink, SinkSetup};
 use super::smooth::{ForwardRecord, SmoothSetup};
-use super::state_files::StateFiles;
 use super::{Inputs, OdometerInput, Progress, Settings};
 use crate::progress::Ticker;
 use crate::{Error, InputError};
@@ -53,30 +53,48 @@ pub(super) fn check_odometer(inputs: &Inputs, settings: &Settings) -> Result<(),
     Ok(())
 }
 
-/// The input files, open: the IMU file, the GNSS file at its first fix
-/// (an error before it is reported now) and the truth.
-pub(super) struct Readers {
-    pub imu: ImuReader<BufReader<File>>,
+/// The run's inputs, each opened once and read by one reader from here to
+/// the end of the run (the alignment, the pass, the evaluation and the
+/// smoother share the streams); their tallies go into the manifest.
+pub(crate) struct Readers {
+    pub imu: ImuReader<In>,
+    /// IMU records read ahead (by the alignment) and not yet processed.
+    pub imu_ahead: VecDeque<ImuRecord>,
     pub gnss: Option<GnssSource>,
     /// What the first fix holds: the GNSS measurement of the filter.
     pub layout: GnssLayout,
     pub truth: Option<Truth>,
+    pub odometer: Option<OdometerReader<In>>,
+    /// Every input by its flag, with what was read of it.
+    pub tallies: Vec<(String, PathBuf, Tally)>,
 }
 
 impl Readers {
     /// Opens the files `inputs` names in the formats of `settings`.
     pub(super) fn open(inputs: &Inputs, settings: &Settings) -> Result<Self, Error> {
-        let imu = ImuReader::open_with_format(
+        let mut tallies = Vec::new();
+        let mut open = |flag: &str, path: &Path| -> Result<In, Error> {
+            let (reader, tally) = kestrel_io::input::open(path)?;
+            tallies.push((flag.to_owned(), path.to_path_buf(), tally));
+            Ok(reader)
+        };
+        let imu = ImuReader::with_format(
+            open("--imu", &inputs.imu)?,
             &inputs.imu,
             &settings.imu_format,
             settings.week,
             settings.start.time,
-        )?;
+        );
         let (gnss, layout) = match &inputs.gnss {
             None => (None, GnssLayout::None),
             Some(p) => {
-                let mut g =
-                    GnssSource::open(GnssInput::open(p, &settings.gnss_format, settings.week)?)?;
+                let reader = open("--gnss", p)?;
+                let mut g = GnssSource::open(GnssInput::new(
+                    reader,
+                    p,
+                    &settings.gnss_format,
+                    settings.week,
+                ))?;
                 let layout = match g.peek()? {
                     None => GnssLayout::None,
                     Some(f) if f.vel.is_some() => GnssLayout::PositionVelocity,
@@ -85,39 +103,29 @@ impl Readers {
                 (Some(g), layout)
             }
         };
-        let truth = inputs
-            .truth
-            .as_deref()
-            .map(|p| Truth::open(p, &settings.truth.format, settings.week))
-            .transpose()?;
+        let truth = match inputs.truth.as_deref() {
+            Some(p) => Some(Truth::new(
+                open("--truth", p)?,
+                p,
+                &settings.truth.format,
+                settings.week,
+            )),
+            None => None,
+        };
+        let odometer = match &inputs.odometer {
+            OdometerInput::File(p) => Some(OdometerReader::new(open("--odometer", p)?, p)),
+            _ => None,
+        };
         Ok(Self {
             imu,
+            imu_ahead: VecDeque::new(),
             gnss,
             layout,
             truth,
+            odometer,
+            tallies,
         })
     }
-}
-
-/// Makes `--out` ready: created, checked not to hold an input under an
-/// output's name, and freed of symbolic links under those names.
-pub(super) fn prepare_output(inputs: &Inputs) -> Result<(), Error> {
-    // A caller's name is a file in `out`, never a path out of it.
-    if let Some(bad) = inputs.also_written.iter().find(|n| {
-        let mut parts = Path::new(n.as_str()).components();
-        !matches!(
-            (parts.next(), parts.next()),
-            (Some(Component::Normal(_)), None)
-        )
-    }) {
-        return Err(Error::Failed(format!(
-            "also_written: `{bad}` is not a plain file name (no folders, `.` or `..`)"
-        )));
-    }
-    std::fs::create_dir_all(&inputs.out).map_err(|e| Error::io(&inputs.out, e))?;
-    let names = output_names(&inputs.also_written);
-    refuse_overwriting_inputs(inputs, &names)?;
-    remove_output_links(&inputs.out, &names)
 }
 
 /// The job of the pass: the readers, the result files (with the
@@ -126,17 +134,36 @@ pub(super) fn prepare_output(inputs: &Inputs) -> Result<(), Error> {
 pub(super) fn job<'p>(
     inputs: &Inputs,
     settings: &Settings,
-    readers: Readers,
+    mut readers: Readers,
+    dir: &Path,
     progress: &'p mut dyn Progress,
 ) -> Result<Job<'p>, Error> {
-    let Readers {
-        imu, gnss, truth, ..
-    } = readers;
-    let evaluation = truth
-        .map(|truth| compare_with(inputs, settings, truth, "errors.csv"))
+    let gap = readers
+        .gnss
+        .as_mut()
+        .and_then(|g| gnss_gap_threshold(g).transpose())
         .transpose()?;
+    let evaluation = match readers.truth.take() {
+        Some(truth) => {
+            // The smoother compares against the same truth, replayed from
+            // what the forward comparison read: the file is read once.
+            let truth = if inputs.smooth {
+                truth.tee(dir.join(".work-truth"))?
+            } else {
+                truth
+            };
+            Some(compare_with(
+                inputs,
+                settings,
+                truth,
+                gap,
+                dir.join("errors.csv"),
+            )?)
+        }
+        None => None,
+    };
     let smoother = if inputs.smooth {
-        Some(smoother(inputs, settings)?)
+        Some(smoother(inputs, settings, gap, dir)?)
     } else {
         None
     };
@@ -151,151 +178,76 @@ pub(super) fn job<'p>(
         label: settings.kind.label(),
         week: settings.week,
         interval: settings.output_interval,
-        nav_path: &inputs.out.join("result.nav"),
-        csv_path: &inputs.out.join("result.csv"),
+        nav_path: &dir.join("result.nav"),
+        csv_path: &dir.join("result.csv"),
         evaluation,
         progress: Ticker::new(progress, settings.start.time, end),
     })?;
-    Job::new(imu, gnss, sink, smoother, settings, inputs)
+    Job::new(readers, sink, smoother, settings, inputs, dir)
 }
 
-/// The smoother's record, comparing the smoothed solution with its own
-/// reading of the truth.
-fn smoother(inputs: &Inputs, settings: &Settings) -> Result<ForwardRecord, Error> {
+/// The smoother's record, comparing the smoothed solution with the truth
+/// the forward comparison read (replayed from the scratch folder).
+fn smoother(
+    inputs: &Inputs,
+    settings: &Settings,
+    gap: Option<f64>,
+    dir: &Path,
+) -> Result<ForwardRecord, Error> {
     let evaluation = match inputs.truth.as_deref() {
         None => None,
-        Some(p) => {
-            let truth = Truth::open(p, &settings.truth.format, settings.week)?;
-            Some(compare_with(
-                inputs,
-                settings,
-                truth,
-                "errors_smoothed.csv",
-            )?)
-        }
+        Some(_) => Some(compare_with(
+            inputs,
+            settings,
+            Truth::replay(&dir.join(".work-truth"), inputs.truth.as_deref())?,
+            gap,
+            dir.join("errors_smoothed.csv"),
+        )?),
     };
     ForwardRecord::new(
-        &inputs.out,
+        dir,
         SmoothSetup {
             label: settings.kind.label(),
             week: settings.week,
             interval: settings.output_interval,
             earth: settings.earth,
-            nav_path: inputs.out.join("smoothed.nav"),
-            csv_path: inputs.out.join("smoothed.csv"),
-            out: inputs.out.clone(),
+            nav_path: dir.join("smoothed.nav"),
+            csv_path: dir.join("smoothed.csv"),
+            out: dir.to_path_buf(),
             evaluation,
         },
     )
 }
 
-/// The comparison of a solution with `truth`, writing `csv` in `--out`.
+/// The comparison of a solution with `truth`, writing `csv`.
 fn compare_with(
     inputs: &Inputs,
     settings: &Settings,
     truth: Truth,
-    csv: &str,
+    gap: Option<f64>,
+    csv: PathBuf,
 ) -> Result<Evaluation, Error> {
     Evaluation::new(EvaluationSetup {
         earth: settings.earth,
         axes: settings.axes,
         truth,
         antenna: settings.truth.at_antenna.then_some(settings.lever_arm),
-        csv_path: inputs.out.join(csv),
-        drift: DriftTable::new(
-            &inputs.outages,
-            inputs
-                .gnss
-                .as_deref()
-                .and_then(|p| gnss_gap_threshold(p, settings)),
-            settings.start.time,
-        ),
+        csv_path: csv,
+        drift: DriftTable::new(&inputs.outages, gap, settings.start.time),
     })
 }
 
 /// 1.5 × the median interval of the first 21 intervals of the GNSS file:
 /// longer intervals between fixes are data gaps. `None` if the file has
-/// fewer than two fixes (an unreadable line is the main reader's to report).
-fn gnss_gap_threshold(path: &Path, settings: &Settings) -> Option<f64> {
-    let times: Vec<f64> = GnssInput::open(path, &settings.gnss_format, settings.week)
-        .ok()?
-        .take(22)
-        .map_while(Result::ok)
-        .map(|f| f.time)
-        .collect();
-    gap_threshold(&times)
-}
-
-/// The names written in `--out`: the run's own and the caller's `extra`.
-fn output_names(extra: &[String]) -> Vec<String> {
-    let states = ["result", "smoothed"]
-        .into_iter()
-        .flat_map(StateFiles::names);
-    [
-        "result.nav",
-        "result.csv",
-        "errors.csv",
-        "error_summary.csv",
-        "drift.csv",
-        "smoothed.nav",
-        "smoothed.csv",
-        "errors_smoothed.csv",
-        ".smoother-epochs.partial",
-        ".smoother-samples.partial",
-        ".smoother-corrections.partial",
-    ]
-    .map(String::from)
-    .into_iter()
-    .chain(states)
-    .chain(extra.iter().cloned())
-    .collect()
-}
-
-/// Refuses a run whose outputs would replace one of its inputs (say
-/// `--truth out/result.nav --out out`), comparing resolved paths, so a
-/// symbolic link in `--out` pointing at an input is caught too.
-fn refuse_overwriting_inputs(inputs: &Inputs, names: &[String]) -> Result<(), Error> {
-    let out = std::fs::canonicalize(&inputs.out).map_err(|e| Error::io(&inputs.out, e))?;
-    let odometer = match &inputs.odometer {
-        OdometerInput::File(p) => Some(p),
-        _ => None,
-    };
-    let given = [
-        ("--imu", Some(&inputs.imu)),
-        ("--gnss", inputs.gnss.as_ref()),
-        ("--truth", inputs.truth.as_ref()),
-        ("--odometer", odometer),
-        ("--config", Some(&inputs.config)),
-    ];
-    for (flag, input) in given {
-        let Some(input) = input else { continue };
-        let Ok(input_real) = std::fs::canonicalize(input) else {
-            continue;
-        };
-        for name in names {
-            let output = out.join(name);
-            let resolved = std::fs::canonicalize(&output).unwrap_or(output.clone());
-            if resolved == input_real || output == input_real {
-                return Err(Error::Failed(format!(
-                    "refusing to write {}: it is the {flag} input {}; choose another --out",
-                    inputs.out.join(name).display(),
-                    input.display()
-                )));
-            }
+/// fewer than two fixes. The fixes are read ahead in the pass's own stream.
+fn gnss_gap_threshold(gnss: &mut GnssSource) -> Result<Option<f64>, InputError> {
+    let mut times = Vec::with_capacity(22);
+    for i in 0..22 {
+        // A bad line ends the look-ahead; the pass reports it at its turn.
+        match gnss.ahead(i)? {
+            Some(f) => times.push(f.time),
+            None => break,
         }
     }
-    Ok(())
-}
-
-/// Removes symbolic links standing under output names in `out`, so no
-/// output is ever written through one (the link goes, its target is never
-/// touched; inputs were checked before).
-fn remove_output_links(out: &Path, names: &[String]) -> Result<(), Error> {
-    for name in names {
-        let p = out.join(name);
-        if std::fs::symlink_metadata(&p).is_ok_and(|m| m.file_type().is_symlink()) {
-            std::fs::remove_file(&p).map_err(|e| Error::io(&p, e))?;
-        }
-    }
-    Ok(())
+    Ok(gap_threshold(&times))
 }

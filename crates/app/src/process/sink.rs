@@ -52,45 +52,26 @@ pub(crate) struct SinkSetup<'a, 'p> {
     pub progress: Ticker<'p>,
 }
 
-/// The file a result is written to until the run succeeds: `.NAME.partial`
-/// beside it, so a failed or interrupted run never leaves a file under the
-/// result's name that looks complete.
-pub(crate) fn partial_path(path: &Path) -> PathBuf {
-    let name = path.file_name().map_or_else(
-        || std::ffi::OsString::from("result"),
-        std::ffi::OsStr::to_os_string,
-    );
-    let mut partial = std::ffi::OsString::from(".");
-    partial.push(name);
-    partial.push(".partial");
-    path.with_file_name(partial)
-}
-
-/// Creates the partial file of `path` afresh: a stale one (or a symbolic
-/// link in its place) is removed, never followed.
-pub(crate) fn create_partial(path: &Path) -> Result<File, Error> {
-    let partial = partial_path(path);
-    match std::fs::remove_file(&partial) {
-        Ok(()) => {}
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
-        Err(e) => return Err(Error::io(&partial, e)),
-    }
+/// Creates the output file `path` (inside the run's scratch folder: the
+/// output transaction publishes it under its name when the run commits).
+pub(crate) fn create_output(path: &Path) -> Result<File, Error> {
     std::fs::OpenOptions::new()
         .write(true)
-        .create_new(true)
-        .open(&partial)
-        .map_err(|e| Error::io(&partial, e))
+        .create(true)
+        .truncate(true)
+        .open(path)
+        .map_err(|e| Error::io(path, e))
 }
 
 impl<'p> Sink<'p> {
     pub(crate) fn new(s: SinkSetup<'_, 'p>) -> Result<Self, Error> {
-        let mut nav = BufWriter::with_capacity(1 << 16, create_partial(s.nav_path)?);
+        let mut nav = BufWriter::with_capacity(1 << 16, create_output(s.nav_path)?);
         writeln!(
             nav,
             "# week sow lat_deg lon_deg h_m vN vE vD (m/s) roll pitch yaw (deg)"
         )
         .map_err(|e| Error::io(s.nav_path, e))?;
-        let mut csv = BufWriter::with_capacity(1 << 16, create_partial(s.csv_path)?);
+        let mut csv = BufWriter::with_capacity(1 << 16, create_output(s.csv_path)?);
         writeln!(csv, "{RESULT_CSV_HEADER}").map_err(|e| Error::io(s.csv_path, e))?;
         Ok(Self {
             label: s.label,
@@ -145,8 +126,7 @@ impl<'p> Sink<'p> {
         if self.interval == 0.0 || self.schedule.due(t, 1.0 / self.interval) {
             self.write(nav)?;
         }
-        self.progress.at(t);
-        Ok(())
+        self.progress.at(t)
     }
 
     /// One result line, formatted once: space-separated to the
@@ -183,22 +163,18 @@ impl<'p> Sink<'p> {
         };
         let ok = succeeded && flushed.is_ok() && evaluated.is_ok();
         for path in [&self.nav_path, &self.csv_path] {
-            settle(path, ok)?;
+            keep_or_discard(path, ok)?;
         }
         flushed.and(evaluated)
     }
 }
 
-/// Puts the partial file of `path` in place when `ok` (a rename, which
-/// replaces a symbolic link there rather than writing through it),
-/// otherwise deletes it.
-pub(crate) fn settle(path: &Path, ok: bool) -> Result<(), Error> {
-    let partial = partial_path(path);
-    if ok {
-        std::fs::rename(&partial, path).map_err(|e| Error::io(path, e))
-    } else {
+/// Removes the output file `path` unless `ok` (a failed run publishes
+/// nothing; the scratch folder goes anyway, this frees its space early).
+pub(crate) fn keep_or_discard(path: &Path, ok: bool) -> Result<(), Error> {
+    if !ok {
         // Best effort: the run's own error is the one to report.
-        let _ = std::fs::remove_file(&partial);
-        Ok(())
+        let _ = std::fs::remove_file(path);
     }
+    Ok(())
 }

@@ -30,11 +30,11 @@
 //! *AIAA Journal* 3(8), 1965.
 //!
 //! Memory stays bounded: the forward pass streams its epochs and every
-//! IMU sample's solution to binary files in the output folder (hidden,
-//! `.smoother-*.partial`), the backward pass reads the epochs from the end
-//! and streams the corrections to a third file, and the last pass reads the
-//! samples forwards and the corrections backwards. The files are removed
-//! when the run ends, whether it succeeded or not. Only the GNSS fix times
+//! IMU sample's solution to binary working files in the run's scratch
+//! folder, the backward pass reads the epochs from the end and streams the
+//! corrections to a third file, and the last pass reads the samples
+//! forwards and the corrections backwards. The files go with the scratch
+//! folder when the run ends, whether it succeeded, failed or was stopped. Only the GNSS fix times
 //! (for the outage and gap table) are kept in memory: 8 bytes per fix.
 
 use std::fs::File;
@@ -50,7 +50,7 @@ use kestrel::smoother::{rts_step, Smoothed};
 use kestrel::Euclidean;
 
 use super::evaluation::{Evaluation, NavCovariance};
-use super::sink::{create_partial, partial_path, settle, Sink, SinkSetup};
+use super::sink::{create_output, keep_or_discard, Sink, SinkSetup};
 use super::state_files::StateFiles;
 use super::stats::ErrorStats;
 use super::traces::StateRow;
@@ -135,7 +135,7 @@ struct BinaryFile {
 
 impl BinaryFile {
     fn create(path: PathBuf) -> Result<Self, Error> {
-        let file = create_partial(&path)?;
+        let file = create_output(&path)?;
         Ok(Self {
             writer: Some(BufWriter::with_capacity(1 << 16, file)),
             path,
@@ -146,14 +146,14 @@ impl BinaryFile {
         match self.writer.as_mut() {
             Some(w) => w
                 .write_all(bytes)
-                .map_err(|e| Error::io(&partial_path(&self.path), e)),
+                .map_err(|e| Error::io(&self.path.clone(), e)),
             None => Ok(()),
         }
     }
 
     /// Flushes and reopens the file for reading.
     fn reader(&mut self) -> Result<BufReader<File>, Error> {
-        let partial = partial_path(&self.path);
+        let partial = self.path.clone();
         if let Some(mut w) = self.writer.take() {
             w.flush().map_err(|e| Error::io(&partial, e))?;
         }
@@ -166,7 +166,7 @@ impl Drop for BinaryFile {
     fn drop(&mut self) {
         self.writer = None;
         // Best effort: a scratch file, never a result.
-        let _ = settle(&self.path, false);
+        let _ = keep_or_discard(&self.path, false);
     }
 }
 
@@ -226,9 +226,9 @@ impl ForwardRecord {
     /// Scratch files in `out`; the smoothed result as `setup` says.
     pub(crate) fn new(out: &Path, setup: SmoothSetup) -> Result<Self, Error> {
         Ok(Self {
-            epochs: BinaryFile::create(out.join("smoother-epochs"))?,
-            samples: BinaryFile::create(out.join("smoother-samples"))?,
-            corrections: BinaryFile::create(out.join("smoother-corrections"))?,
+            epochs: BinaryFile::create(out.join(".work-smoother-epochs"))?,
+            samples: BinaryFile::create(out.join(".work-smoother-samples"))?,
+            corrections: BinaryFile::create(out.join(".work-smoother-corrections"))?,
             fixes: Vec::new(),
             setup,
             count: 0,
@@ -300,7 +300,7 @@ impl ForwardRecord {
     fn backward<const N: usize>(&mut self) -> Result<(), Error> {
         let size = epoch_len(N) * 8;
         let mut reader = self.epochs.reader()?;
-        let epochs_path = partial_path(&self.epochs.path);
+        let epochs_path = self.epochs.path.clone();
         let out = &mut self.corrections;
         let mut bytes = vec![0u8; size];
         let mut read = |k: usize| -> Result<ForwardEpoch<f64, N>, Error> {
@@ -373,7 +373,7 @@ impl ForwardRecord {
         );
         let samples = Samples {
             reader: self.samples.reader()?,
-            path: partial_path(&self.samples.path),
+            path: self.samples.path.clone(),
             bytes: [0u8; SAMPLE_LEN * 8],
         };
         let mut silent = Silent;
@@ -557,7 +557,7 @@ impl<const N: usize> Corrections<N> {
     fn new(reader: BufReader<File>, path: &Path, count: usize) -> Self {
         Self {
             reader,
-            path: partial_path(path),
+            path: path.to_path_buf(),
             left: count,
             bytes: vec![0u8; correction_len(N) * 8],
         }

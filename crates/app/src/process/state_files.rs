@@ -28,7 +28,7 @@ use kestrel::nav::measurement::ErrorLayout;
 
 use super::evaluation::Thinned;
 use super::schedule::Schedule;
-use super::sink::{create_partial, settle};
+use super::sink::{create_output, keep_or_discard};
 use super::traces::StateRow;
 use crate::Error;
 use kestrel::nav::imu_spec::G0;
@@ -46,7 +46,7 @@ impl Table {
     fn create(out: &Path, name: &str, columns: &[String]) -> Result<Self, Error> {
         let open = |ext: &str| -> Result<(PathBuf, BufWriter<File>), Error> {
             let path = out.join(format!("{name}.{ext}"));
-            let file = create_partial(&path)?;
+            let file = create_output(&path)?;
             Ok((path, BufWriter::with_capacity(1 << 16, file)))
         };
         let mut t = Self {
@@ -93,7 +93,7 @@ impl Table {
         }
         let ok = ok && flushed.is_ok();
         for (p, _) in [&self.text, &self.csv] {
-            settle(p, ok)?;
+            keep_or_discard(p, ok)?;
         }
         flushed.map(|()| vec![self.text.0, self.csv.0])
     }
@@ -157,16 +157,6 @@ impl StateFiles {
             interval,
             schedule: Schedule::new(),
         })
-    }
-
-    /// The file names for `name` (to guard before the run).
-    pub(crate) fn names(name: &str) -> [String; 4] {
-        [
-            format!("{name}_imu_errors.txt"),
-            format!("{name}_imu_errors.csv"),
-            format!("{name}_std.txt"),
-            format!("{name}_std.csv"),
-        ]
     }
 
     /// Whether a row is due at the epoch at `t` (the output interval).

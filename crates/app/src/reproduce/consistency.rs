@@ -11,6 +11,7 @@ use rayon::prelude::*;
 use super::monte_carlo::worker_pool;
 use super::table::TextTable;
 use crate::process::chi_square_band;
+use crate::transaction::Cancel;
 use crate::Error;
 
 /// The share of a run skipped before NEES is counted (the initial
@@ -44,12 +45,14 @@ pub struct NeesRow {
 /// position NEES after the first [`SETTLING_SHARE`] of the run.
 ///
 /// # Errors
-/// [`Error::Failed`] if the worker threads cannot start.
+/// [`Error::Failed`] if the worker threads cannot start;
+/// [`Error::Cancelled`] once `cancel` is set (no run starts after that).
 pub fn nees_rows(
     configs: &[(&str, &Scenario)],
     seeds: core::ops::Range<u64>,
     threads: usize,
     duration: Option<f64>,
+    cancel: &Cancel,
 ) -> Result<Vec<NeesRow>, Error> {
     let (lo, hi) = band();
     let pool = worker_pool(threads)?;
@@ -68,6 +71,9 @@ pub fn nees_rows(
         work.par_iter()
             .map(|&(c, seed)| {
                 let s = &clean[c];
+                if cancel.is_cancelled() {
+                    return vec![None; s.filters.len()];
+                }
                 let start = duration
                     .or_else(|| s.trajectory().ok().map(|t| t.duration()))
                     .unwrap_or(0.0)
@@ -89,6 +95,7 @@ pub fn nees_rows(
             })
             .collect()
     });
+    cancel.check()?;
     let mut rows = Vec::new();
     for (c, ((suffix, _), s)) in configs.iter().zip(&clean).enumerate() {
         let of_config = &runs[c * seeds.len()..(c + 1) * seeds.len()];

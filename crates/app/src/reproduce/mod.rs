@@ -14,7 +14,7 @@ mod stats;
 mod table;
 mod window;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use crate::experiment::PositionAxes;
 use crate::scenario::{tuned, FilterKind, MeasurementKind, Scenario};
@@ -35,7 +35,8 @@ pub use table::TextTable;
 pub use window::{Window, WindowError, WindowProbe};
 
 use crate::output::write_epochs_csv;
-use crate::progress::Progress;
+use crate::progress::{Cancellable, Progress};
+use crate::transaction::{Cancel, Transaction};
 use crate::Error;
 
 /// The most Monte Carlo runs a reproduction accepts.
@@ -52,7 +53,7 @@ pub const CONSISTENCY_RUNS: usize = 5;
 pub const MAX_THREADS: usize = 256;
 
 /// How a scenario is reproduced.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct ReproduceOptions {
     /// Monte Carlo runs per filter (1 to [`MAX_RUNS`]); run `i` draws its
     /// sensor noise from `seed + i`.
@@ -67,6 +68,9 @@ pub struct ReproduceOptions {
     /// Seeds per variant of the sensitivity study (0 skips it; papers
     /// only).
     pub study_runs: usize,
+    /// Stops the reproduction when set: no run starts after that and
+    /// [`reproduce_scenario`] returns [`Error::Cancelled`].
+    pub cancel: Cancel,
 }
 
 impl Default for ReproduceOptions {
@@ -77,6 +81,7 @@ impl Default for ReproduceOptions {
             threads: 0,
             duration: None,
             study_runs: 10,
+            cancel: Cancel::default(),
         }
     }
 }
@@ -107,8 +112,9 @@ pub struct Reproduction {
 ///
 /// # Errors
 /// [`Error::Failed`] for options out of range or worker threads that
-/// cannot start. A filter that diverges is reported in the tables, not as
-/// an error.
+/// cannot start; [`Error::Cancelled`] once `options.cancel` is set or
+/// `progress` asks the runs to stop. A filter that diverges is reported in
+/// the tables, not as an error.
 pub fn reproduce_scenario(
     scenario: &Scenario,
     paper: Option<&'static Paper>,
@@ -132,6 +138,7 @@ pub fn reproduce_scenario(
         .map(|p| p.windows.iter().map(|(_, w)| *w).collect())
         .unwrap_or_default();
     progress.stage(&format!("scenario {}", scenario.name));
+    let progress = &mut Cancellable::new(progress, &options.cancel);
     let mut outcomes = run_monte_carlo(scenario, &plan, &windows, progress)?;
     // The configuration with competently tuned baselines, beside the
     // paper's.
@@ -167,14 +174,20 @@ pub fn reproduce_scenario(
             "scenario {}: consistency check, then the sensitivity study ({} seeds per variant)…",
             scenario.name, options.study_runs
         ));
-        let rows = nees_rows(&configs, seeds.clone(), plan.threads, plan.duration)?;
+        let rows = nees_rows(
+            &configs,
+            seeds.clone(),
+            plan.threads,
+            plan.duration,
+            &options.cancel,
+        )?;
         text.push_str(&nees_table(&rows, seeds));
         let study_plan = StudyPlan {
             runs: options.study_runs,
             threads: plan.threads,
             duration: plan.duration,
         };
-        study = run_study(&scenario.name, &study_plan)?;
+        study = run_study(&scenario.name, &study_plan, &options.cancel)?;
         text.push_str(&study_table(&study));
         for note in p.notes {
             text.push_str(&format!("note: {note}\n"));
@@ -215,30 +228,31 @@ impl Reproduction {
 
     /// Writes `summary.csv`, `runs.csv`, one `epochs_<filter>.csv` per
     /// filter (run 0), `sensitivity.csv` (with a study) and `report.txt`
-    /// into `dir` (created if missing); returns the files in that order.
+    /// into the output transaction `tx` (published when it commits);
+    /// returns their final paths in that order.
     ///
     /// # Errors
     /// [`Error::Io`] naming a file that cannot be written.
-    pub fn write(&self, dir: &Path) -> Result<Vec<PathBuf>, Error> {
-        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    pub fn write(&self, tx: &mut Transaction) -> Result<Vec<PathBuf>, Error> {
         let input = self.report_input();
-        let mut files = vec![dir.join("summary.csv"), dir.join("runs.csv")];
-        write_summary_csv(&files[0], &input)?;
-        write_runs_csv(&files[1], &input)?;
+        let mut names = Vec::new();
+        write_summary_csv(&tx.path("summary.csv")?, &input)?;
+        names.push("summary.csv".to_owned());
+        write_runs_csv(&tx.path("runs.csv")?, &input)?;
+        names.push("runs.csv".to_owned());
         for o in &self.outcomes {
-            let path = dir.join(format!("epochs_{}.csv", slug(&o.label)));
-            write_epochs_csv(&path, self.axes(), &o.records)?;
-            files.push(path);
+            let name = format!("epochs_{}.csv", slug(&o.label));
+            write_epochs_csv(&tx.path(&name)?, self.axes(), &o.records)?;
+            names.push(name);
         }
         if !self.study.is_empty() {
-            let path = dir.join("sensitivity.csv");
-            write_study_csv(&path, &self.study)?;
-            files.push(path);
+            write_study_csv(&tx.path("sensitivity.csv")?, &self.study)?;
+            names.push("sensitivity.csv".to_owned());
         }
-        let report = dir.join("report.txt");
+        let report = tx.path("report.txt")?;
         std::fs::write(&report, &self.text).map_err(|e| Error::io(&report, e))?;
-        files.push(report);
-        Ok(files)
+        names.push("report.txt".to_owned());
+        Ok(names.iter().map(|n| tx.out().join(n)).collect())
     }
 
     /// The measurement size every filter updates with, for the NIS bound

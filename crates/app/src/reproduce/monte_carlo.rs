@@ -27,6 +27,9 @@ pub struct MonteCarloPlan {
 /// One run's result.
 pub type RunOutcome = Result<(RunSummary, Vec<WindowError>), RunError>;
 
+/// One run's outcome per filter, with run 0's epoch records.
+type RunResults = Vec<(RunOutcome, Vec<EpochRecord>)>;
+
 /// The outcome of one filter over all runs.
 #[derive(Clone, Debug)]
 pub struct FilterOutcome {
@@ -73,7 +76,9 @@ impl FilterOutcome {
 /// fails in a run is recorded as such and the others go on.
 ///
 /// # Errors
-/// [`Error::Failed`] if the thread pool cannot be built or `runs` is 0.
+/// [`Error::Failed`] if the thread pool cannot be built or `runs` is 0;
+/// [`Error::Cancelled`] once `progress` asks the runs to stop (no run
+/// starts after that).
 pub fn run_monte_carlo(
     scenario: &Scenario,
     plan: &MonteCarloPlan,
@@ -92,10 +97,15 @@ pub fn run_monte_carlo(
         ..RunOptions::default()
     };
     // One job per run: its filters share one simulation of the data.
-    let results: Vec<Vec<(RunOutcome, Vec<EpochRecord>)>> = pool.install(|| {
+    // `None` for a run not started because the reproduction was cancelled.
+    let results: Vec<Option<RunResults>> = pool.install(|| {
         (0..plan.runs)
             .into_par_iter()
             .map(|r| {
+                // A cancelled reproduction starts no more runs.
+                if done.lock().map_or(true, |d| d.1.cancelled()) {
+                    return None;
+                }
                 let seed = plan.seed.wrapping_add(r as u64);
                 let mut probes: Vec<WindowProbe> =
                     filters.iter().map(|_| WindowProbe::new(windows)).collect();
@@ -112,7 +122,7 @@ pub fn run_monte_carlo(
                     let n = d.0 as f64;
                     d.1.reached(n);
                 }
-                match outcomes {
+                Some(match outcomes {
                     Ok(outcomes) => outcomes
                         .into_iter()
                         .zip(probes)
@@ -126,13 +136,16 @@ pub fn run_monte_carlo(
                         .iter()
                         .map(|_| (Err(e.clone()), Vec::new()))
                         .collect(),
-                }
+                })
             })
             .collect()
     });
     if let Ok((_, progress)) = done.into_inner() {
         progress.finish();
     }
+    let Some(results) = results.into_iter().collect::<Option<Vec<_>>>() else {
+        return Err(Error::Cancelled);
+    };
     let mut outcomes: Vec<FilterOutcome> = filters
         .iter()
         .map(|k| FilterOutcome {

@@ -12,6 +12,7 @@ use rayon::prelude::*;
 use super::monte_carlo::worker_pool;
 use super::stats::Quartiles;
 use super::table::TextTable;
+use crate::transaction::Cancel;
 use crate::Error;
 
 /// The ratios a study reports: the baseline's RMS ÷ the favoured filter's.
@@ -65,8 +66,9 @@ fn figures(s: &RunSummary) -> [f64; 3] {
 /// share one simulation per seed.
 ///
 /// # Errors
-/// [`Error::Failed`] if the worker threads cannot start.
-pub fn run_study(name: &str, plan: &StudyPlan) -> Result<Vec<StudyRow>, Error> {
+/// [`Error::Failed`] if the worker threads cannot start;
+/// [`Error::Cancelled`] once `cancel` is set (no run starts after that).
+pub fn run_study(name: &str, plan: &StudyPlan, cancel: &Cancel) -> Result<Vec<StudyRow>, Error> {
     let variants = variants(name);
     if variants.is_empty() || plan.runs == 0 {
         return Ok(Vec::new());
@@ -113,6 +115,9 @@ pub fn run_study(name: &str, plan: &StudyPlan) -> Result<Vec<StudyRow>, Error> {
         work.par_iter()
             .map(|&(g, seed)| {
                 let (s, kinds) = &setups[g];
+                if cancel.is_cancelled() {
+                    return vec![None; kinds.len()];
+                }
                 match run_together(s, kinds, seed, &options, |_, _| {}) {
                     Ok(runs) => runs.iter().map(|r| r.as_ref().ok().map(figures)).collect(),
                     Err(_) => vec![None; kinds.len()],
@@ -120,6 +125,7 @@ pub fn run_study(name: &str, plan: &StudyPlan) -> Result<Vec<StudyRow>, Error> {
             })
             .collect()
     });
+    cancel.check()?;
     let of = |(g, i): (usize, usize)| -> Vec<Option<[f64; 3]>> {
         results[g * plan.runs..(g + 1) * plan.runs]
             .iter()

@@ -426,7 +426,7 @@ pub struct Param {
 impl Param {
     fn new(key: &'static str, value: ParamValue) -> Self {
         let comment = match key {
-            "forgetting" => "Sage-Husa forgetting factor b, (0, 1)",
+            "forgetting" => "Sage-Husa forgetting factor b, (0, 1]",
             "reserve" => "reserve coefficient γ of the divergence test, ≥ 1",
             "lambda_max" => "upper clamp of the fading factor λ, ≥ 1 (inf: none)",
             "significance" => "significance α of the χ² compression threshold, (0, 1)",

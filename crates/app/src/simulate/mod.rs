@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 use crate::experiment::{RunOptions, Simulation};
 use crate::scenario::{by_name, Scenario};
 
+use crate::transaction::{Begin, Cancel, Provenance, Transaction};
 use crate::{Error, InputError};
 use kestrel_io::gins::{GnssWriter, ImuRecord, ImuWriter, NavWriter};
 
@@ -27,8 +28,10 @@ pub struct SimulateOptions {
     pub imu_rate: Option<f64>,
     /// Output directory (created if missing).
     pub out: PathBuf,
-    /// Replace imu.txt, gnss.txt, truth.nav and process.toml if they exist
-    /// (without it, existing files are never overwritten).
+    /// Also replace an imu.txt, gnss.txt, truth.nav or process.toml that
+    /// no earlier kestrel run into the folder wrote (without it they are
+    /// refused; an earlier run's files are always replaced, exactly the set
+    /// its manifest lists).
     pub force: bool,
 }
 
@@ -83,6 +86,19 @@ pub fn scenario(arg: &str) -> Result<Scenario, Error> {
 /// assert!(kestrel_app::simulate::scenario("999").is_err());
 /// ```
 pub fn simulate(args: &SimulateOptions) -> Result<SimulateReport, Error> {
+    simulate_with(args, &Cancel::default(), &[])
+}
+
+/// As [`simulate`], stopped by `cancel` (then [`Error::Cancelled`], and
+/// nothing written) and recording `command` in the manifest.
+///
+/// # Errors
+/// As [`simulate`], and [`Error::Cancelled`].
+pub fn simulate_with(
+    args: &SimulateOptions,
+    cancel: &Cancel,
+    command: &[String],
+) -> Result<SimulateReport, Error> {
     let sc = scenario(&args.scenario)?;
     let seed = args.seed.unwrap_or(sc.seed);
     let mut options = RunOptions::default();
@@ -100,23 +116,21 @@ pub fn simulate(args: &SimulateOptions) -> Result<SimulateReport, Error> {
     let sim = Simulation::new(&sc, seed, &options)
         .map_err(|e| Error::Failed(format!("scenario {}: {e}", sc.name)))?;
     let out = &args.out;
-    std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
-    let paths = ["imu.txt", "gnss.txt", "truth.nav", "process.toml"].map(|f| out.join(f));
-    for p in &paths {
-        let Ok(meta) = std::fs::symlink_metadata(p) else {
-            continue;
-        };
-        if !args.force {
-            return Err(Error::Failed(format!(
-                "refusing to overwrite {}: it exists (pass --force to replace the simulated files)",
-                p.display()
-            )));
-        }
-        // Never write through a link: remove it (its target stays).
-        if meta.file_type().is_symlink() {
-            std::fs::remove_file(p).map_err(|e| Error::io(p, e))?;
-        }
+    let mut begin = Begin::command(command.iter().cloned());
+    begin.force = args.force;
+    if Path::new(&args.scenario)
+        .extension()
+        .is_some_and(|e| e == "toml")
+    {
+        begin = begin.input("scenario", &args.scenario);
     }
+    let mut tx = Transaction::begin(out, begin)?;
+    let paths = [
+        tx.path("imu.txt")?,
+        tx.path("gnss.txt")?,
+        tx.path("truth.nav")?,
+        tx.path("process.toml")?,
+    ];
     let [imu_path, gnss_path, truth_path, config_path] = &paths;
     let has_odometer = sc.odometer.is_some();
     let head = format!(
@@ -167,6 +181,7 @@ pub fn simulate(args: &SimulateOptions) -> Result<SimulateReport, Error> {
     imu.into_inner().map_err(io(imu_path))?;
     gnss.into_inner().map_err(io(gnss_path))?;
     truth.into_inner().map_err(io(truth_path))?;
+    cancel.check()?;
     let kind = sc
         .filters
         .first()
@@ -177,10 +192,14 @@ pub fn simulate(args: &SimulateOptions) -> Result<SimulateReport, Error> {
     if samples == 0 {
         return Err(InputError::file(out, "the simulation produced no IMU sample").into());
     }
+    let files = tx.commit(Provenance {
+        seeds: vec![seed],
+        ..Provenance::default()
+    })?;
     Ok(SimulateReport {
         samples,
         fixes,
         odometer: has_odometer,
-        files: paths.to_vec(),
+        files,
     })
 }

@@ -4,6 +4,7 @@
 
 use std::path::PathBuf;
 
+use kestrel_app::process::Silent;
 use kestrel_app::process::{process, Inputs, Progress};
 
 /// The shipped example data.
@@ -73,22 +74,30 @@ fn progress_hears_the_span_and_the_end_of_a_run_that_succeeds_or_fails() {
 
 #[test]
 fn the_callers_output_names_are_guarded_like_the_runs_own() {
+    use kestrel_app::transaction::Cancel;
     let dir = out("names");
     std::fs::create_dir_all(&dir).unwrap();
     let config = dir.join("plot.png");
     std::fs::copy(data("process.toml"), &config).unwrap();
-    let mut inputs = Inputs::new(data("imu.txt"), &config, &dir);
-    inputs.also_written = vec!["plot.png".into()];
-    let e = process(&inputs, &mut kestrel_app::process::Silent)
-        .unwrap_err()
-        .to_string();
+    let inputs = Inputs::new(data("imu.txt"), &config, &dir);
+    let mut tx = kestrel_app::process::begin(&inputs, true, &[]).unwrap();
+    let run = kestrel_app::process::run(&inputs, &mut tx, &mut Silent, &Cancel::default()).unwrap();
+    // A figure the caller adds under the input's name is refused at commit,
+    // even with force, and nothing is published.
+    std::fs::write(tx.path("plot.png").unwrap(), "figure").unwrap();
+    let e = tx.commit(run.provenance).unwrap_err().to_string();
     assert_eq!(
         e,
         format!(
-            "refusing to write {}: it is the --config input {}; choose another --out",
+            "refusing to write {}: it is the --config input {}; choose another output folder",
             dir.join("plot.png").display(),
             config.display()
         )
+    );
+    assert!(!dir.join("result.nav").exists());
+    assert_eq!(
+        std::fs::read_to_string(&config).unwrap(),
+        std::fs::read_to_string(data("process.toml")).unwrap()
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -96,6 +105,8 @@ fn the_callers_output_names_are_guarded_like_the_runs_own() {
 #[test]
 fn a_callers_output_name_must_stay_inside_the_output_folder() {
     let dir = out("escape");
+    let inputs = Inputs::new(data("imu.txt"), data("process.toml"), &dir);
+    let mut tx = kestrel_app::process::begin(&inputs, false, &[]).unwrap();
     for bad in [
         "../plot.png",
         "/tmp/plot.png",
@@ -103,17 +114,16 @@ fn a_callers_output_name_must_stay_inside_the_output_folder() {
         "..",
         ".",
         "",
+        ".kestrel.lock",
+        "kestrel-manifest.json",
     ] {
-        let mut inputs = Inputs::new(data("imu.txt"), data("process.toml"), &dir);
-        inputs.also_written = vec!["fine.png".into(), bad.into()];
-        let e = process(&inputs, &mut kestrel_app::process::Silent)
-            .unwrap_err()
-            .to_string();
+        let e = tx.path(bad).unwrap_err().to_string();
         assert_eq!(
             e,
-            format!("also_written: `{bad}` is not a plain file name (no folders, `.` or `..`)")
+            format!("`{bad}` cannot be an output file's name (a plain name, not reserved)")
         );
     }
-    // Refused before anything is written.
+    drop(tx);
+    // Nothing was written: the folder the run made is gone again.
     assert!(!dir.exists());
 }

@@ -273,7 +273,7 @@ fn out_of_range_values_name_key_path_and_allowed_range() {
         (
             "forgetting = 0.97",
             "forgetting = 1.2",
-            "bad.toml:35:14: key `filters[1].forgetting`: expected 0 < b < 1, found 1.2",
+            "bad.toml:35:14: key `filters[1].forgetting`: expected 0 < b ≤ 1, found 1.2",
         ),
         (
             "reserve = 3.0",
@@ -350,10 +350,7 @@ fn missing_file_is_named() {
     assert!(matches!(e, CliError::Input(_)));
     let message = e.to_string();
     assert!(
-        message.starts_with(&format!(
-            "{}: cannot read the scenario file: ",
-            path.display()
-        )),
+        message.starts_with(&format!("{}: cannot read the file: ", path.display())),
         "{message}"
     );
 }

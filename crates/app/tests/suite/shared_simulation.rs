@@ -49,7 +49,14 @@ fn the_monte_carlo_equals_one_filter_at_a_time() {
 fn the_consistency_check_equals_one_filter_at_a_time() {
     let s = by_name("004").unwrap();
     let duration = 60.0;
-    let rows = nees_rows(&[("", &s), (" (again)", &s)], 5..8, 2, Some(duration)).unwrap();
+    let rows = nees_rows(
+        &[("", &s), (" (again)", &s)],
+        5..8,
+        2,
+        Some(duration),
+        &Default::default(),
+    )
+    .unwrap();
     assert_eq!(rows.len(), 2 * s.filters.len());
     let (lo, hi) = chi_square_band(3);
     let clean = fault_free(&s);

@@ -10,6 +10,7 @@
 //! line. Two-sided bounds around those values.
 
 use crate::support;
+use kestrel_cli::Context;
 
 use std::path::Path;
 
@@ -51,7 +52,7 @@ fn alignment_from_the_data() {
         true,
         "\n[alignment]\nstatic_time = 50.0\nyaw = \"gnss-course\"\nmin_speed = 3.0\n",
     );
-    let r = process(&args(&dir, "course.toml", "course")).unwrap();
+    let r = process(&args(&dir, "course.toml", "course"), &Context::default()).unwrap();
     let a = r.alignment.clone().unwrap();
     assert_eq!(
         (a.yaw, a.samples, a.start),
@@ -74,7 +75,7 @@ fn alignment_from_the_data() {
         false,
         "\n[alignment]\nstatic_time = 50.0\nyaw = \"gyrocompass\"\n",
     );
-    let r = process(&args(&dir, "compass.toml", "compass")).unwrap();
+    let r = process(&args(&dir, "compass.toml", "compass"), &Context::default()).unwrap();
     let a = r.alignment.unwrap();
     assert_eq!(
         (a.yaw, a.start, a.gyro_bias),
@@ -89,7 +90,7 @@ fn alignment_from_the_data() {
         true,
         "\n[alignment]\nstatic_time = 80.0\nyaw = \"gnss-course\"\n",
     );
-    let e = process(&args(&dir, "moving.toml", "moving"))
+    let e = process(&args(&dir, "moving.toml", "moving"), &Context::default())
         .unwrap_err()
         .to_string();
     assert!(

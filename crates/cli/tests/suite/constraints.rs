@@ -11,6 +11,7 @@
 //! the run; the bounds are two-sided.
 
 use crate::support;
+use kestrel_cli::Context;
 
 use std::path::Path;
 
@@ -20,7 +21,7 @@ use support::{forward_drift as max_drift, run_args, simulate_file, tmp_dir, OUTA
 
 fn run(dir: &Path, config: &Path, out: &str) -> Result<ProcessReport, String> {
     let name = config.file_name().unwrap().to_str().unwrap();
-    process(&run_args(dir, name, out, &OUTAGES)).map_err(|e| e.to_string())
+    process(&run_args(dir, name, out, &OUTAGES), &Context::default()).map_err(|e| e.to_string())
 }
 
 const CONSTRAINTS: &str = "

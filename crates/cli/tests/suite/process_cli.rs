@@ -2,6 +2,7 @@
 //! round trip simulate → open formats → process against the in-memory run,
 //! outages, divergence, and the binary end to end.
 
+use kestrel_cli::Context;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -49,6 +50,7 @@ fn args(dir: &Path, odo: bool) -> ProcessArgs {
         outages: Vec::new(),
         no_plots: true,
         smooth: false,
+        force: false,
     }
 }
 
@@ -67,7 +69,7 @@ fn round_trip_with(name: &str, kind: &FilterKind, seed: u64, duration: f64, odo:
     let truth = sc.trajectory().unwrap().initial_state();
     let config = process_config(&sc, &sc.initial_state(&truth), kind);
     std::fs::write(dir.join("process.toml"), config).unwrap();
-    let report = process(&args(&dir, odo)).unwrap();
+    let report = process(&args(&dir, odo), &Context::default()).unwrap();
     let opts = RunOptions::default().with_duration(duration);
     let mem = run(&sc, kind, seed, &opts).unwrap().summary;
     // Every IMU sample has a truth line: all are compared; the runner's
@@ -147,7 +149,10 @@ fn config_error(dir: &Path, text: &str) -> (PathBuf, String) {
     std::fs::write(&path, text).unwrap();
     let mut a = args(dir, false);
     a.config = path.clone();
-    (path, process(&a).unwrap_err().to_string())
+    (
+        path,
+        process(&a, &Context::default()).unwrap_err().to_string(),
+    )
 }
 
 /// `e` is `FILE:LINE:COLUMN: key `key`: msg`, LINE the line of the key (or
@@ -271,7 +276,7 @@ fn configuration_errors_name_the_line_column_or_key() {
     let mut a = args(&dir, true);
     a.config = dir.join("process.toml");
     assert_eq!(
-        process(&a).unwrap_err().to_string(),
+        process(&a, &Context::default()).unwrap_err().to_string(),
         format!(
             "{}: key `odometer`: --odo needs an [odometer] table",
             a.config.display()
@@ -279,7 +284,7 @@ fn configuration_errors_name_the_line_column_or_key() {
     );
     // A missing configuration file.
     a.config = dir.join("absent.toml");
-    let e = process(&a).unwrap_err().to_string();
+    let e = process(&a, &Context::default()).unwrap_err().to_string();
     assert!(
         e.starts_with(&format!("{}: cannot read the file: ", a.config.display())),
         "{e}"
@@ -289,11 +294,11 @@ fn configuration_errors_name_the_line_column_or_key() {
 #[test]
 fn outage_windows_drop_the_fixes_inside_them() {
     let dir = sim("002", 7, 60.0);
-    let full = process(&args(&dir, false)).unwrap();
+    let full = process(&args(&dir, false), &Context::default()).unwrap();
     let mut a = args(&dir, false);
     a.outages = vec!["20:40".parse().unwrap(), "50.5:52.5".parse().unwrap()];
     a.out = dir.join("coast");
-    let coast = process(&a).unwrap();
+    let coast = process(&a, &Context::default()).unwrap();
     // 1 Hz fixes at 1 … 60 s: the half-open windows drop 20 … 39 (20) and
     // 51, 52 (2).
     assert_eq!(full.fixes_used, 60);
@@ -316,7 +321,7 @@ fn outage_windows_drop_the_fixes_inside_them() {
     let mut cut = args(&dir, false);
     cut.gnss = Some(dir.join("gnss-cut.txt"));
     cut.out = dir.join("cut");
-    let deleted = process(&cut).unwrap();
+    let deleted = process(&cut, &Context::default()).unwrap();
     assert_eq!(deleted.fixes_used, 38);
     let read = |d: &str| std::fs::read_to_string(dir.join(d).join("result.nav")).unwrap();
     assert_eq!(read("cut"), read("coast"));
@@ -393,7 +398,9 @@ fn a_divergence_is_reported_with_its_time() {
     f[5] = "1e308".into();
     lines[k] = f.join(" ");
     std::fs::write(dir.join("imu.txt"), lines.join("\n")).unwrap();
-    let e = process(&args(&dir, false)).unwrap_err().to_string();
+    let e = process(&args(&dir, false), &Context::default())
+        .unwrap_err()
+        .to_string();
     assert_eq!(
         e,
         format!(
@@ -516,7 +523,7 @@ fn the_binary_simulates_processes_and_refuses_bad_input() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
         err.starts_with(&format!(
-            "kestrel: {}: cannot open the file: ",
+            "kestrel: {}: cannot read the file: ",
             d("absent.txt")
         )),
         "{err}"

@@ -7,6 +7,7 @@
 //! `simulate` does not overwrite without `--force`, and run counts and
 //! thread counts are bounded before work starts.
 
+use kestrel_cli::Context;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -71,11 +72,11 @@ fn set_config(dir: &Path, edit: impl Fn(&str) -> String) {
 #[test]
 fn a_dropped_sample_is_bridged_and_reported() {
     let dir = sim(3, 30.0);
-    let full = process(&args(&dir, "full")).unwrap();
+    let full = process(&args(&dir, "full"), &Context::default()).unwrap();
     assert_eq!(full.timing.gaps, 0);
     assert!((full.timing.nominal - 0.005).abs() < 1e-12);
     let line = drop_imu(&dir, 10.0, 10.004);
-    let bridged = process(&args(&dir, "bridged")).unwrap();
+    let bridged = process(&args(&dir, "bridged"), &Context::default()).unwrap();
     let t = &bridged.timing;
     assert_eq!((t.gaps, t.first_gaps.len()), (1, 1));
     assert_eq!(t.first_gaps[0].line, line);
@@ -97,7 +98,9 @@ fn a_dropped_sample_is_bridged_and_reported() {
 fn a_long_gap_is_an_error_naming_its_line_unless_coasting_is_configured() {
     let dir = sim(4, 30.0);
     let line = drop_imu(&dir, 10.0, 12.0);
-    let e = process(&args(&dir, "r")).unwrap_err().to_string();
+    let e = process(&args(&dir, "r"), &Context::default())
+        .unwrap_err()
+        .to_string();
     let path = dir.join("imu.txt");
     assert_eq!(
         e,
@@ -117,13 +120,13 @@ fn a_long_gap_is_an_error_naming_its_line_unless_coasting_is_configured() {
     set_config(&dir, |t| {
         t.replace("[imu]\n", "[imu]\nlong_gap = \"coast\"\n")
     });
-    let r = process(&args(&dir, "coast")).unwrap();
+    let r = process(&args(&dir, "coast"), &Context::default()).unwrap();
     assert_eq!(r.timing.gaps, 1);
     assert!(r.timing.longest.unwrap().long);
     set_config(&dir, |t| {
         t.replace("long_gap = \"coast\"\n", "max_gap = 2.5\n")
     });
-    let r = process(&args(&dir, "wide")).unwrap();
+    let r = process(&args(&dir, "wide"), &Context::default()).unwrap();
     assert!(!r.timing.longest.unwrap().long);
 }
 
@@ -131,7 +134,9 @@ fn a_long_gap_is_an_error_naming_its_line_unless_coasting_is_configured() {
 fn a_log_starting_late_after_the_initial_time_is_refused() {
     let dir = sim(5, 30.0);
     let line = drop_imu(&dir, 0.0, 3.0);
-    let e = process(&args(&dir, "r")).unwrap_err().to_string();
+    let e = process(&args(&dir, "r"), &Context::default())
+        .unwrap_err()
+        .to_string();
     assert!(
         e.contains(&format!(
             "imu.txt:{line}:1: gap in the IMU data: 3 s since initial.time, longer than \
@@ -144,7 +149,7 @@ fn a_log_starting_late_after_the_initial_time_is_refused() {
 #[test]
 fn a_week_rollover_changes_nothing() {
     let dir = sim(6, 20.0);
-    let before = process(&args(&dir, "plain")).unwrap();
+    let before = process(&args(&dir, "plain"), &Context::default()).unwrap();
     // Move every time so that the run crosses the end of the week at 10 s:
     // IMU and GNSS in seconds of week, the truth in week + seconds.
     let shift = 604_800.0 - 10.0;
@@ -200,7 +205,7 @@ fn a_week_rollover_changes_nothing() {
             .unwrap();
         format!("{}time = {}{}", &t[..i], old + shift, &t[end..])
     });
-    let after = process(&args(&dir, "rolled")).unwrap();
+    let after = process(&args(&dir, "rolled"), &Context::default()).unwrap();
     assert_eq!(after.samples, before.samples);
     assert_eq!(after.updates, before.updates);
     let (a, b) = (before.errors.unwrap(), after.errors.unwrap());
@@ -239,11 +244,11 @@ fn outputs_never_replace_inputs() {
     let before = std::fs::read(out.join("result.nav")).unwrap();
     let mut a = args(&dir, "out");
     a.truth = Some(out.join("result.nav"));
-    let e = process(&a).unwrap_err().to_string();
+    let e = process(&a, &Context::default()).unwrap_err().to_string();
     assert_eq!(
         e,
         format!(
-            "refusing to write {}: it is the --truth input {}; choose another --out",
+            "refusing to write {}: it is the --truth input {}; choose another output folder",
             out.join("result.nav").display(),
             out.join("result.nav").display()
         )
@@ -254,17 +259,24 @@ fn outputs_never_replace_inputs() {
     std::fs::create_dir_all(&linked).unwrap();
     std::os::unix::fs::symlink(dir.join("imu.txt"), linked.join("result.csv")).unwrap();
     let imu = std::fs::read(dir.join("imu.txt")).unwrap();
-    let e = process(&args(&dir, "linked")).unwrap_err().to_string();
+    let e = process(&args(&dir, "linked"), &Context::default())
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("it is the --imu input"), "{e}");
     assert_eq!(std::fs::read(dir.join("imu.txt")).unwrap(), imu);
-    // A link to an unrelated file is replaced, not written through.
+    // A link to an unrelated file is the user's: refused, and with
+    // --force replaced, never written through.
     let other = dir.join("other.txt");
     std::fs::write(&other, "keep me").unwrap();
     let replaced = dir.join("replaced");
     std::fs::create_dir_all(&replaced).unwrap();
     std::os::unix::fs::symlink(&other, replaced.join("result.nav")).unwrap();
     std::os::unix::fs::symlink(&other, replaced.join("errors.csv")).unwrap();
-    process(&args(&dir, "replaced")).unwrap();
+    let mut a = args(&dir, "replaced");
+    let e = process(&a, &Context::default()).unwrap_err().to_string();
+    assert!(e.starts_with("refusing to replace"), "{e}");
+    a.force = true;
+    process(&a, &Context::default()).unwrap();
     assert_eq!(std::fs::read_to_string(&other).unwrap(), "keep me");
     assert!(
         std::fs::read_to_string(replaced.join("errors.csv"))
@@ -278,9 +290,10 @@ fn outputs_never_replace_inputs() {
         .is_symlink());
 }
 
-/// `simulate` never overwrites existing files without `--force`.
+/// `simulate` replaces the files an earlier run into the folder wrote (its
+/// manifest lists them) and never a file of the user's without `--force`.
 #[test]
-fn simulate_refuses_to_overwrite_without_force() {
+fn simulate_replaces_its_own_files_and_refuses_the_users() {
     let dir = sim(8, 2.0);
     let imu = std::fs::read(dir.join("imu.txt")).unwrap();
     let mut a = SimulateOptions {
@@ -291,18 +304,36 @@ fn simulate_refuses_to_overwrite_without_force() {
         out: dir.clone(),
         force: false,
     };
+    simulate(&a).unwrap();
+    assert_ne!(std::fs::read(dir.join("imu.txt")).unwrap(), imu);
+    // The same names in a folder no kestrel run wrote: the user's files.
+    let mine = dir.join("mine");
+    std::fs::create_dir_all(&mine).unwrap();
+    std::fs::write(mine.join("imu.txt"), "my data\n").unwrap();
+    a.out = mine.clone();
     let e = simulate(&a).unwrap_err().to_string();
     assert_eq!(
         e,
         format!(
-            "refusing to overwrite {}: it exists (pass --force to replace the simulated files)",
-            dir.join("imu.txt").display()
+            "refusing to replace {}: no earlier kestrel run into this folder wrote it (no \
+             manifest lists it); move it away or pass --force",
+            mine.join("imu.txt").display()
         )
     );
-    assert_eq!(std::fs::read(dir.join("imu.txt")).unwrap(), imu);
+    assert_eq!(
+        std::fs::read_to_string(mine.join("imu.txt")).unwrap(),
+        "my data\n"
+    );
+    assert!(
+        !mine.join("gnss.txt").exists(),
+        "nothing published on a refusal"
+    );
     a.force = true;
     simulate(&a).unwrap();
-    assert_ne!(std::fs::read(dir.join("imu.txt")).unwrap(), imu);
+    assert_ne!(
+        std::fs::read_to_string(mine.join("imu.txt")).unwrap(),
+        "my data\n"
+    );
 }
 
 /// `--runs` and `--threads` are checked before any work, with the limit
@@ -363,7 +394,9 @@ fn timing_keys_refuse_hostile_values() {
                 .collect();
             base.replace("[imu]\n", &format!("[imu]\n{line}\n"))
         });
-        let e = process(&args(&dir, "r")).unwrap_err().to_string();
+        let e = process(&args(&dir, "r"), &Context::default())
+            .unwrap_err()
+            .to_string();
         assert!(e.contains(want), "{line}: {e}");
     }
 }
@@ -389,7 +422,7 @@ fn shift_truth(dir: &Path, shift: f64) {
 #[test]
 fn errors_are_evaluated_at_every_truth_epoch_and_never_over_nothing() {
     let dir = sim(4, 10.0);
-    let exact = process(&args(&dir, "exact")).unwrap();
+    let exact = process(&args(&dir, "exact"), &Context::default()).unwrap();
     let all = exact.errors.unwrap();
     assert_eq!(all.epochs, exact.samples);
     assert_eq!(exact.aiding_errors.unwrap().epochs, exact.fixes_used);
@@ -397,7 +430,7 @@ fn errors_are_evaluated_at_every_truth_epoch_and_never_over_nothing() {
     // A truth 2 µs off every sample: compared at its own epochs, the
     // solution interpolated between samples; same errors to 1e-3.
     shift_truth(&dir, 2e-6);
-    let off = process(&args(&dir, "off")).unwrap();
+    let off = process(&args(&dir, "off"), &Context::default()).unwrap();
     let e = off.errors.unwrap();
     assert_eq!(
         e.epochs,
@@ -420,7 +453,9 @@ fn errors_are_evaluated_at_every_truth_epoch_and_never_over_nothing() {
     // A truth that starts after the run, and an empty one: errors that say
     // why, and no result files.
     shift_truth(&dir, 100.0);
-    let e = process(&args(&dir, "late")).unwrap_err().to_string();
+    let e = process(&args(&dir, "late"), &Context::default())
+        .unwrap_err()
+        .to_string();
     assert_eq!(
         e,
         format!(
@@ -431,7 +466,9 @@ fn errors_are_evaluated_at_every_truth_epoch_and_never_over_nothing() {
     );
     assert!(!dir.join("late/result.nav").exists() && !dir.join("late/errors.csv").exists());
     std::fs::write(dir.join("truth.nav"), "# nothing yet\n").unwrap();
-    let e = process(&args(&dir, "empty")).unwrap_err().to_string();
+    let e = process(&args(&dir, "empty"), &Context::default())
+        .unwrap_err()
+        .to_string();
     assert!(
         e.ends_with("no truth epoch to compare with: the file has no data lines"),
         "{e}"
@@ -444,13 +481,13 @@ fn drift_is_reported_per_outage_and_gap_and_never_over_nothing() {
     // Without GNSS the run is compared at every epoch; no aiding line.
     let mut a = args(&dir, "ins");
     a.gnss = None;
-    let ins = process(&a).unwrap();
+    let ins = process(&a, &Context::default()).unwrap();
     assert_eq!(ins.errors.unwrap().epochs, 2000);
     assert!(ins.aiding_errors.is_none() && ins.drift.is_empty());
     // Every fix inside an outage; a second window after the run.
     let mut a = args(&dir, "windows");
     a.outages = vec!["0:100".parse().unwrap(), "200:300".parse().unwrap()];
-    let r = process(&a).unwrap();
+    let r = process(&a, &Context::default()).unwrap();
     assert_eq!((r.fixes_used, r.fixes_in_outage), (0, 10));
     assert_eq!(r.drift[0].epochs, 2000);
     assert_eq!(r.drift[1].epochs, 0);
@@ -486,7 +523,7 @@ fn every_gnss_line_is_read_and_checked_even_after_the_imu_ends() {
     // Good fixes after the run: read, counted, reported.
     let extra: String = (6..9).map(|t| fix_at(f64::from(t)) + "\n").collect();
     std::fs::write(dir.join("gnss.txt"), format!("{gnss}{extra}")).unwrap();
-    let r = process(&args(&dir, "after")).unwrap();
+    let r = process(&args(&dir, "after"), &Context::default()).unwrap();
     assert_eq!((r.fixes_used, r.fixes_after_end), (5, 3));
     assert!(summary(&r).contains(
         "warning: 3 GNSS fixes after the last IMU sample were read and checked but not used\n"
@@ -496,7 +533,9 @@ fn every_gnss_line_is_read_and_checked_even_after_the_imu_ends() {
     let text = format!("{gnss}{}\n{}\n", fix_at(9e4), fix_at(7.0));
     std::fs::write(dir.join("gnss.txt"), &text).unwrap();
     let lines = text.lines().count();
-    let e = process(&args(&dir, "far")).unwrap_err().to_string();
+    let e = process(&args(&dir, "far"), &Context::default())
+        .unwrap_err()
+        .to_string();
     assert!(
         e.starts_with(&format!(
             "{}:{lines}:1: time does not increase: 7 s after 90000 s",
@@ -506,7 +545,9 @@ fn every_gnss_line_is_read_and_checked_even_after_the_imu_ends() {
     );
     // A garbage line after the run is an error naming it.
     std::fs::write(dir.join("gnss.txt"), format!("{gnss}{extra}x y\n")).unwrap();
-    let e = process(&args(&dir, "garbage")).unwrap_err().to_string();
+    let e = process(&args(&dir, "garbage"), &Context::default())
+        .unwrap_err()
+        .to_string();
     let n = gnss.lines().count() + 4;
     assert!(
         e.starts_with(&format!("{}:{n}:", dir.join("gnss.txt").display())),
@@ -559,14 +600,14 @@ fn rewrite_imu(dir: &Path, name: &str, header: &str, line: impl Fn(f64, [f64; 6]
 #[test]
 fn imu_files_of_other_shapes_are_read_by_configuration() {
     let dir = sim(11, 30.0);
-    let gins = process(&args(&dir, "gins")).unwrap();
+    let gins = process(&args(&dir, "gins"), &Context::default()).unwrap();
     let base = std::fs::read_to_string(dir.join("process.toml")).unwrap();
     let with = |name: &str, table: &str| {
         std::fs::write(dir.join(format!("{name}.toml")), format!("{base}\n{table}")).unwrap();
         let mut a = args(&dir, name);
         a.imu = dir.join(format!("{name}.csv"));
         a.config = dir.join(format!("{name}.toml"));
-        process(&a)
+        process(&a, &Context::default())
     };
     let g = 9.80665;
     // Increments in degrees and g·s, axes x right, y forward, z up, CSV
@@ -728,13 +769,13 @@ fn rtklib_pos_files_are_read_with_their_quality_flags() {
         "pos",
         "[gnss_file]\nformat = \"rtklib\"\nquality = [1, 2]\n",
     );
-    let r = process(&a).unwrap();
+    let r = process(&a, &Context::default()).unwrap();
     assert_eq!((r.fixes_used, r.fixes_refused_quality), (16, 4));
     assert!(summary(&r).contains("4 GNSS fixes skipped for their quality flag"));
     // Bit for bit the run on the GINS file without the single fixes.
     let mut b = args(&dir, "kept");
     b.gnss = Some(dir.join("kept.txt"));
-    process(&b).unwrap();
+    process(&b, &Context::default()).unwrap();
     let read = |d: &str| std::fs::read_to_string(dir.join(d).join("result.nav")).unwrap();
     assert_eq!(read("pos"), read("kept"));
     // What RTKLIB options kestrel cannot read, and a σ of 0, are named.
@@ -746,14 +787,14 @@ fn rtklib_pos_files_are_read_with_their_quality_flags() {
     for (text, line, column, msg) in cases {
         std::fs::write(dir.join("bad.pos"), text).unwrap();
         a.gnss = Some(dir.join("bad.pos"));
-        let e = process(&a).unwrap_err().to_string();
+        let e = process(&a, &Context::default()).unwrap_err().to_string();
         assert_eq!(
             e,
             format!("{}:{line}:{column}: {msg}", dir.join("bad.pos").display())
         );
     }
     a.config = config("q", "[gnss_file]\nformat = \"rtklib\"\nquality = [7]\n");
-    let e = process(&a).unwrap_err().to_string();
+    let e = process(&a, &Context::default()).unwrap_err().to_string();
     assert!(e.ends_with("key `gnss_file.quality`: expected RTKLIB's flags 1 (fix), 2 (float), 3 (SBAS), 4 (DGPS), 5 (single), 6 (PPP), found 7"), "{e}");
 }
 
@@ -785,12 +826,12 @@ fn the_odometer_in_its_own_file_and_with_position_only_gnss() {
     let mut a = args(&dir, "column");
     a.gnss = None;
     a.odo = true;
-    let column = process(&a).unwrap();
+    let column = process(&a, &Context::default()).unwrap();
     let mut b = args(&dir, "file");
     b.gnss = None;
     b.imu = dir.join("imu7.txt");
     b.odometer = Some(dir.join("odo.txt"));
-    let file = process(&b).unwrap();
+    let file = process(&b, &Context::default()).unwrap();
     assert_eq!(column.updates, file.updates);
     assert!(file.updates > 0);
     let read = |d: &str| std::fs::read_to_string(dir.join(d).join("result.nav")).unwrap();
@@ -817,7 +858,7 @@ fn the_odometer_in_its_own_file_and_with_position_only_gnss() {
     let mut c = args(&dir, "pos-only");
     c.gnss = Some(dir.join("gnss7.txt"));
     c.odo = true;
-    let aided = process(&c).unwrap();
+    let aided = process(&c, &Context::default()).unwrap();
     assert_eq!(aided.fixes_used, 20);
     let (with, without) = (aided.errors.unwrap(), column.errors.unwrap());
     assert!(
@@ -831,7 +872,7 @@ fn the_odometer_in_its_own_file_and_with_position_only_gnss() {
     e.imu = dir.join("imu7.txt");
     e.odometer = Some(dir.join("odo-empty.txt"));
     assert_eq!(
-        process(&e).unwrap_err().to_string(),
+        process(&e, &Context::default()).unwrap_err().to_string(),
         format!(
             "{}: no odometer reading at or before the last IMU sample (an empty file, or times \
              that are not GPS seconds of week like the IMU's)",
@@ -841,7 +882,7 @@ fn the_odometer_in_its_own_file_and_with_position_only_gnss() {
     assert!(!dir.join("empty/result.nav").exists());
     // Both sources at once is refused.
     c.odometer = Some(dir.join("odo.txt"));
-    let e = process(&c).unwrap_err().to_string();
+    let e = process(&c, &Context::default()).unwrap_err().to_string();
     assert_eq!(
         e,
         "give the odometer speeds either in the IMU file (--odo) or in their own file \
@@ -879,7 +920,7 @@ fn a_position_only_reference_and_one_at_the_antenna() {
         let mut a = args(&dir, name);
         a.truth = Some(dir.join(truth));
         a.config = dir.join(format!("{name}.toml"));
-        process(&a).unwrap()
+        process(&a, &Context::default()).unwrap()
     };
     let p = with("pos", "[truth_file]\nformat = \"rtklib\"\n", "truth.pos");
     let n = with("nav", "", "truth1hz.nav");

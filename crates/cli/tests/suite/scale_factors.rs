@@ -14,6 +14,7 @@
 //! run); the bounds are two-sided around its documented values.
 
 use crate::support;
+use kestrel_cli::Context;
 
 use std::path::Path;
 
@@ -23,7 +24,7 @@ use support::{forward_drift as max_drift, run_args, simulate_file, tmp_dir, OUTA
 
 fn run(dir: &Path, config: &Path, out: &str) -> ProcessReport {
     let name = config.file_name().unwrap().to_str().unwrap();
-    process(&run_args(dir, name, out, &OUTAGES)).unwrap()
+    process(&run_args(dir, name, out, &OUTAGES), &Context::default()).unwrap()
 }
 
 /// The last row of a CSV file, as numbers.

@@ -39,7 +39,7 @@ mod tail;
 pub use angle::{degrees_exact, degrees_to_radians, invert_exact};
 pub use gnss::{GnssReader, GnssWriter};
 pub use imu::{ImuReader, ImuRecord, ImuWriter};
-pub use line::{Delimiter, Fields};
+pub use line::{Delimiter, Fields, MAX_LINE_BYTES};
 pub use nav::WEEK_SECONDS;
 pub use nav::{nav_line, NavReader, NavRecord, NavWriter};
 pub use odometer::{OdometerReader, SpeedRecord};

@@ -174,11 +174,14 @@ impl<R: BufRead> RtklibReader<R> {
             ));
         };
         let tokens: Vec<&str> = text.split_whitespace().collect();
-        let last = c
-            .vel
-            .map_or(0, |(v, s)| v[2].max(s[2]))
-            .max(c.sd[2])
-            .max(c.q);
+        // Every column the line is read at (a header may name them in any
+        // order, or twice).
+        let last = [c.lat, c.lon, c.h, c.q]
+            .into_iter()
+            .chain(c.sd)
+            .chain(c.vel.into_iter().flat_map(|(v, s)| v.into_iter().chain(s)))
+            .max()
+            .unwrap_or(0);
         if tokens.len() <= last {
             return Err(self.at(
                 line,
@@ -411,5 +414,21 @@ mod tests {
         assert_eq!(r.time(1, "2024/01/01", "00:00:18.000").unwrap(), 86_418.0);
         assert_eq!(r.time(1, "2295", "86418.000").unwrap(), 86_418.0);
         assert!(r.time(1, "2024/13/01", "00:00:00").is_err());
+    }
+
+    /// Found by the fuzz pass: a header naming `height(m)` after every
+    /// column a data line has was read past the line's end (a panic).
+    #[test]
+    fn a_column_named_after_the_line_end_is_an_error() {
+        let text = "% GPST latitude(deg) longitude(deg) Q ns sdn(m) sde(m) sdu(m) x y height(m)\n\
+                    2300 100.0 30.5 114.4 1 9 0.01 0.01 0.02\n";
+        let e = RtklibReader::new(text.as_bytes(), "a.pos".as_ref(), 2300, &[1])
+            .next()
+            .unwrap()
+            .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "a.pos:2:10: expected 12 columns like the header, found 9"
+        );
     }
 }

@@ -6,8 +6,10 @@ use std::path::Path;
 
 /// The first column of the last data line of the text file at `path`
 /// (blank lines and `#` comments skipped), read from at most its last
-/// 64 KiB; `None` if there is none or it is not a number. Used for the
-/// total of a progress bar without reading the whole file.
+/// 64 KiB; `None` if there is none, it is not a number, or `path` is not a
+/// regular file (a pipe or a device). Used for the total of a progress bar
+/// without reading the file: a bounded look at a regular file's end, not a
+/// second pass over the input.
 ///
 /// ```
 /// let p = std::env::temp_dir().join(format!("kestrel-tail-doc-{}.txt", std::process::id()));
@@ -17,11 +19,16 @@ use std::path::Path;
 /// ```
 pub fn last_time(path: &Path) -> Option<f64> {
     let mut f = File::open(path).ok()?;
+    // A pipe, a FIFO or a device has no end to read back from (and
+    // `/dev/zero` no end at all): unknown.
+    if !f.metadata().ok()?.is_file() {
+        return None;
+    }
     let len = f.seek(SeekFrom::End(0)).ok()?;
     let start = len.saturating_sub(1 << 16);
     f.seek(SeekFrom::Start(start)).ok()?;
     let mut bytes = Vec::new();
-    f.read_to_end(&mut bytes).ok()?;
+    f.take(1 << 16).read_to_end(&mut bytes).ok()?;
     let text = String::from_utf8_lossy(&bytes);
     text.lines()
         .rev()

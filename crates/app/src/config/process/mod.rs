@@ -223,9 +223,42 @@ pub struct Settings {
 /// [`Error::Input`] naming the file and the line and column (syntax,
 /// unknown or missing key, wrong type) or the key (value out of range).
 pub fn load(path: &Path) -> Result<Settings, Error> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| InputError::file(path, format!("cannot read the file: {e}")))?;
-    parse(&text, path)
+    load_recorded(path).map(|(settings, _)| settings)
+}
+
+/// As [`load`], also returning the input's record for a manifest (size,
+/// hash) and the configuration resolved (the file's tables, the filter's
+/// parameters with their defaults filled in) as JSON.
+///
+/// # Errors
+/// As [`load`].
+pub fn load_recorded(path: &Path) -> Result<(Settings, Recorded), Error> {
+    let (text, tally) = crate::config::read::read_config(path)?;
+    let source = Source::new(&text, path);
+    let file: File = source.parse()?;
+    let mut resolved = serde_json::to_value(&file).unwrap_or_default();
+    let settings = Check { source: &source }.settings(file)?;
+    if let Some(filter) = resolved.get_mut("filter").and_then(|f| f.as_object_mut()) {
+        filter.insert("kind".into(), settings.kind.name().into());
+        for p in settings.kind.params() {
+            let value = match p.value {
+                crate::scenario::ParamValue::Number(x) => serde_json::json!(x),
+                crate::scenario::ParamValue::Window(w) => serde_json::json!(w),
+                crate::scenario::ParamValue::Fade(b) => serde_json::json!(b.name()),
+            };
+            filter.insert(p.key.into(), value);
+        }
+    }
+    Ok((settings, Recorded { tally, resolved }))
+}
+
+/// What was read of a configuration, for a manifest.
+#[derive(Clone, Debug)]
+pub struct Recorded {
+    /// Its bytes and hash.
+    pub tally: kestrel_io::input::Tally,
+    /// The configuration resolved, as JSON.
+    pub resolved: serde_json::Value,
 }
 
 /// As [`load`] from the text of the file.

@@ -41,9 +41,18 @@ use crate::{Error, InputError};
 /// # Ok::<(), kestrel_app::Error>(())
 /// ```
 pub fn load(path: &Path) -> Result<Scenario, Error> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| InputError::file(path, format!("cannot read the scenario file: {e}")))?;
-    Ok(parse(&text, path)?)
+    load_recorded(path).map(|(s, _)| s)
+}
+
+/// As [`load`], with what was read of the file (its size and hash, for a
+/// manifest). The file is read once, at most
+/// [`MAX_CONFIG_BYTES`](crate::config::read::MAX_CONFIG_BYTES) of it.
+///
+/// # Errors
+/// As [`load`].
+pub fn load_recorded(path: &Path) -> Result<(Scenario, kestrel_io::input::Tally), Error> {
+    let (text, tally) = crate::config::read::read_config(path)?;
+    Ok((parse(&text, path)?, tally))
 }
 
 /// Reads a scenario from the TOML `text`; `file` names it in errors.
