@@ -42,7 +42,10 @@ enum Command {
 
 fn main() -> ExitCode {
     let signals = Signals::install();
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return usage(&e),
+    };
     let ctx = Context {
         cancel: signals.cancel().clone(),
         command: std::env::args().collect(),
@@ -70,5 +73,28 @@ fn main() -> ExitCode {
             let _ = out::warn(&format!("kestrel: {error}"));
             ExitCode::FAILURE
         }
+    }
+}
+
+/// What clap has to say instead of a command (help, the version, a usage
+/// error), written through [`out`] so a full or closed stream is an error
+/// status, never a silent success.
+fn usage(e: &clap::Error) -> ExitCode {
+    use clap::error::ErrorKind::{DisplayHelp, DisplayVersion};
+    let text = e.render().to_string();
+    let informational = matches!(e.kind(), DisplayHelp | DisplayVersion);
+    let written = if informational {
+        out::print(&text)
+    } else {
+        out::warn(text.trim_end())
+    };
+    match written {
+        Err(e) if out::is_closed_pipe(&e) => ExitCode::from(141),
+        Err(error) => {
+            let _ = out::warn(&format!("kestrel: {error}"));
+            ExitCode::FAILURE
+        }
+        Ok(()) if informational => ExitCode::SUCCESS,
+        Ok(()) => ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(2)),
     }
 }

@@ -45,7 +45,8 @@ pub(crate) enum Range {
     NonNegative,
     /// Finite and > 0 (rates, durations).
     Positive,
-    /// > 0, infinity allowed (correlation times: ∞ means a constant).
+    /// At least [`CORRELATION_TIME_MIN`](kestrel_io::gins::physical::CORRELATION_TIME_MIN),
+    /// infinity allowed (correlation times: ∞ means a constant).
     Tau,
     /// In `[lo, hi]` with open ends where the flags say so.
     Interval(f64, f64, bool, bool),
@@ -57,7 +58,7 @@ impl Range {
             Self::Any => x.is_finite(),
             Self::NonNegative => x.is_finite() && x >= 0.0,
             Self::Positive => x.is_finite() && x > 0.0,
-            Self::Tau => x > 0.0,
+            Self::Tau => x >= kestrel_io::gins::physical::CORRELATION_TIME_MIN,
             Self::Interval(lo, hi, lo_open, hi_open) => {
                 (if lo_open { x > lo } else { x >= lo }) && (if hi_open { x < hi } else { x <= hi })
             }
@@ -69,7 +70,10 @@ impl Range {
             Self::Any => "a finite number".into(),
             Self::NonNegative => "a finite number ≥ 0".into(),
             Self::Positive => "a finite number > 0".into(),
-            Self::Tau => "a time > 0 s (or inf)".into(),
+            Self::Tau => format!(
+                "a time ≥ {} s (or inf; a shorter correlation is white noise)",
+                kestrel_io::gins::physical::CORRELATION_TIME_MIN
+            ),
             Self::Interval(lo, hi, lo_open, hi_open) => format!(
                 "a number in {}{lo}, {hi}{}",
                 if lo_open { '(' } else { '[' },
@@ -86,7 +90,11 @@ pub(crate) fn num(key: &str, x: f64, range: Range) -> Res<f64> {
     } else {
         Err(bad(
             key,
-            format!("expected {}, found {x}", range.describe()),
+            format!(
+                "expected {}, found {}",
+                range.describe(),
+                kestrel_io::gins::physical::show(x)
+            ),
         ))
     }
 }
@@ -102,6 +110,37 @@ pub(crate) fn vec3(key: &str, v: V3, range: Range) -> Res<Vector3<f64>> {
         num(&component(key, &v, i), x, range)?;
     }
     Ok(Vector3::from(v.0))
+}
+
+/// A lever arm, m: each component within
+/// ±[`LEVER_ARM`](kestrel_io::gins::physical::LEVER_ARM).
+pub(crate) fn lever_arm(key: &str, v: V3) -> Res<Vector3<f64>> {
+    use kestrel_io::gins::physical::{outside, LEVER_ARM};
+    for (i, &x) in v.0.iter().enumerate() {
+        if let Some(m) = outside("a lever arm", "m", x, (-LEVER_ARM, LEVER_ARM)) {
+            return Err(bad(component(key, &v, i), m));
+        }
+    }
+    Ok(Vector3::from(v.0))
+}
+
+/// An Earth constant within
+/// [`EARTH_CONSTANT_TOLERANCE`](kestrel_io::gins::physical::EARTH_CONSTANT_TOLERANCE)
+/// of WGS-84's value `wgs84`.
+pub(crate) fn earth_constant(key: &str, x: f64, wgs84: f64, unit: &str) -> Res<f64> {
+    use kestrel_io::gins::physical::{show, EARTH_CONSTANT_TOLERANCE};
+    if (x / wgs84 - 1.0).abs() <= EARTH_CONSTANT_TOLERANCE {
+        Ok(x)
+    } else {
+        Err(bad(
+            key,
+            format!(
+                "expected a value within {} % of WGS-84's {wgs84:e} {unit}, found {}",
+                EARTH_CONSTANT_TOLERANCE * 100.0,
+                show(x)
+            ),
+        ))
+    }
 }
 
 /// The key of component `i` of `v`: `key[i]`, or `key` when the three are
@@ -172,6 +211,43 @@ pub(crate) fn sigma(
         }
     }
     Ok(Some(si))
+}
+
+/// A plausibility bound: the largest magnitude a quantity can have, in
+/// SI, and what is beyond it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Bound {
+    pub max_si: f64,
+    pub beyond: &'static str,
+}
+
+/// The quantity `stem` of `given` (if given) within `bound` in magnitude;
+/// the message states the bound in the unit of the key that was given.
+pub(crate) fn bounded(
+    prefix: &str,
+    stem: &str,
+    given: &[(&Unit, Option<V3>)],
+    bound: Bound,
+) -> Res<()> {
+    let Some(&(unit, Some(raw))) = given.iter().find(|(_, v)| v.is_some()) else {
+        return Ok(());
+    };
+    for (i, &x) in raw.0.iter().enumerate() {
+        let si = unit.si(x).abs();
+        if si.is_nan() || si > bound.max_si {
+            let max = unit.exact(bound.max_si);
+            return Err(bad(
+                component(&join(prefix, unit.key(stem)), &raw, i),
+                format!(
+                    "expected at most {} in magnitude ({}), found {}",
+                    kestrel_io::gins::physical::show(max),
+                    bound.beyond,
+                    kestrel_io::gins::physical::show(x)
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// [`quantity`] for a single number.

@@ -11,13 +11,14 @@ use kestrel::nav::ImuSpec;
 use kestrel::sim::ImuErrors;
 use serde::{Deserialize, Serialize};
 
-use crate::config::check::{bad, join, quantity, sigma, Range, Res};
+use crate::config::check::{bad, bounded, join, quantity, sigma, Bound, Range, Res};
 use crate::config::units::{
     Unit, DEG_PER_H, DEG_PER_H_PER_SQRT_H, DEG_PER_H_PER_SQRT_HZ, DEG_PER_SQRT_H,
     DEG_PER_S_PER_SQRT_HZ, MG, M_S_PER_SQRT_H, PERCENT, PPM, S, SI, UG, UG_PER_SQRT_H,
     UG_PER_SQRT_HZ,
 };
 use crate::config::vec3::V3;
+use kestrel_io::gins::physical;
 
 /// The IMU table as written. The keys of one file that the other does not
 /// take are refused by its reader with the reason.
@@ -101,6 +102,37 @@ pub(crate) struct ImuTable {
     pub long_gap: Option<String>,
 }
 
+/// The plausibility bounds of the IMU's quantities (see
+/// [`physical`](kestrel_io::gins::physical)).
+pub(crate) const GYRO_BIAS_BOUND: Bound = Bound {
+    max_si: physical::GYRO_BIAS,
+    beyond: "100 000 °/h, beyond any gyro's bias",
+};
+pub(crate) const GYRO_ARW_BOUND: Bound = Bound {
+    max_si: physical::GYRO_ARW,
+    beyond: "100 °/√h, beyond any gyro's noise",
+};
+const GYRO_WALK_BOUND: Bound = Bound {
+    max_si: physical::GYRO_BIAS_WALK,
+    beyond: "100 000 °/h/√h, beyond any gyro's bias instability",
+};
+pub(crate) const ACCEL_BIAS_BOUND: Bound = Bound {
+    max_si: physical::ACCEL_BIAS,
+    beyond: "1 g, beyond any accelerometer's bias",
+};
+const ACCEL_VRW_BOUND: Bound = Bound {
+    max_si: physical::ACCEL_VRW,
+    beyond: "100 m/s/√h, beyond any accelerometer's noise",
+};
+const ACCEL_WALK_BOUND: Bound = Bound {
+    max_si: physical::ACCEL_BIAS_WALK,
+    beyond: "1 g/√h, beyond any accelerometer's bias instability",
+};
+pub(crate) const SCALE_BOUND: Bound = Bound {
+    max_si: physical::SCALE_FACTOR,
+    beyond: "50 %, beyond which the sensor does not measure the quantity",
+};
+
 /// A unit under the `process` spelling `stem_sigma`.
 const fn sigma_key(u: Unit) -> Unit {
     Unit {
@@ -115,11 +147,15 @@ impl ImuTable {
     /// sign, noise densities and Markov σ standard deviations (0 for none).
     pub(crate) fn errors(&self, prefix: &str) -> Res<ImuErrors> {
         let p = prefix;
-        let signed = |stem: &str, given: &[(&Unit, Option<V3>)]| -> Res<Vector3<f64>> {
-            Ok(quantity(p, stem, given, Range::Any)?.unwrap_or_default())
+        let signed = |stem: &str, given: &[(&Unit, Option<V3>)], b: Bound| -> Res<Vector3<f64>> {
+            let v = quantity(p, stem, given, Range::Any)?.unwrap_or_default();
+            bounded(p, stem, given, b)?;
+            Ok(v)
         };
-        let sd = |stem: &str, given: &[(&Unit, Option<V3>)]| -> Res<Vector3<f64>> {
-            Ok(sigma(p, stem, given, true)?.unwrap_or_default())
+        let sd = |stem: &str, given: &[(&Unit, Option<V3>)], b: Bound| -> Res<Vector3<f64>> {
+            let v = sigma(p, stem, given, true)?.unwrap_or_default();
+            bounded(p, stem, given, b)?;
+            Ok(v)
         };
         let tau = |stem: &str, given: &[(&Unit, Option<V3>)]| -> Res<Vector3<f64>> {
             Ok(quantity(p, stem, given, Range::Tau)?
@@ -133,6 +169,7 @@ impl ImuTable {
                     (&dph, self.gyro_bias),
                     (&DEG_PER_H, self.gyro_bias_deg_per_h),
                 ],
+                GYRO_BIAS_BOUND,
             )?,
             gyro_arw: sd(
                 "gyro_arw",
@@ -142,6 +179,7 @@ impl ImuTable {
                     (&DEG_PER_H_PER_SQRT_HZ, self.gyro_arw_deg_per_h_per_sqrt_hz),
                     (&DEG_PER_S_PER_SQRT_HZ, self.gyro_arw_deg_per_s_per_sqrt_hz),
                 ],
+                GYRO_ARW_BOUND,
             )?,
             gyro_markov_sigma: sd(
                 "gyro_markov",
@@ -149,6 +187,7 @@ impl ImuTable {
                     (&sigma_key(DEG_PER_H), self.gyro_markov_sigma),
                     (&DEG_PER_H, self.gyro_markov_deg_per_h),
                 ],
+                GYRO_BIAS_BOUND,
             )?,
             gyro_markov_tau: tau(
                 "gyro_markov_tau",
@@ -161,6 +200,7 @@ impl ImuTable {
                     (&PPM, self.gyro_scale_ppm),
                     (&PERCENT, self.gyro_scale_percent),
                 ],
+                SCALE_BOUND,
             )?,
             accel_bias: signed(
                 "accel_bias",
@@ -169,6 +209,7 @@ impl ImuTable {
                     (&UG, self.accel_bias_ug),
                     (&MG, self.accel_bias_mg),
                 ],
+                ACCEL_BIAS_BOUND,
             )?,
             accel_vrw: sd(
                 "accel_vrw",
@@ -177,6 +218,7 @@ impl ImuTable {
                     (&UG_PER_SQRT_HZ, self.accel_vrw_ug_per_sqrt_hz),
                     (&M_S_PER_SQRT_H, self.accel_vrw_m_s_per_sqrt_h),
                 ],
+                ACCEL_VRW_BOUND,
             )?,
             accel_markov_sigma: sd(
                 "accel_markov",
@@ -185,6 +227,7 @@ impl ImuTable {
                     (&UG, self.accel_markov_ug),
                     (&MG, self.accel_markov_mg),
                 ],
+                ACCEL_BIAS_BOUND,
             )?,
             accel_markov_tau: tau(
                 "accel_markov_tau",
@@ -197,6 +240,7 @@ impl ImuTable {
                     (&PPM, self.accel_scale_ppm),
                     (&PERCENT, self.accel_scale_percent),
                 ],
+                SCALE_BOUND,
             )?,
         })
     }
@@ -204,10 +248,11 @@ impl ImuTable {
     /// The bias random walks (gyro, accelerometer), SI per √s; zero when
     /// absent. A bias is a Gauss-Markov process or a random walk, not both.
     pub(crate) fn random_walks(&self, prefix: &str, e: &ImuErrors) -> Res<(f64, f64)> {
-        let walk = |stem: &str, given: &[(&Unit, Option<V3>)], markov: &Vector3<f64>| {
+        let walk = |stem: &str, given: &[(&Unit, Option<V3>)], markov: &Vector3<f64>, b: Bound| {
             let Some(v) = sigma(prefix, stem, given, true)? else {
                 return Ok(0.0);
             };
+            bounded(prefix, stem, given, b)?;
             if *markov != Vector3::zeros() {
                 let key = given
                     .iter()
@@ -232,6 +277,7 @@ impl ImuTable {
                     ),
                 ],
                 &e.gyro_markov_sigma,
+                GYRO_WALK_BOUND,
             )?,
             walk(
                 "accel_bias_rw",
@@ -240,6 +286,7 @@ impl ImuTable {
                     (&UG_PER_SQRT_H, self.accel_bias_rw_ug_per_sqrt_h),
                 ],
                 &e.accel_markov_sigma,
+                ACCEL_WALK_BOUND,
             )?,
         ))
     }

@@ -7,10 +7,12 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::check::{sigma, Res};
+use crate::config::check::{bounded, sigma, Bound, Res};
+use crate::config::imu::{ACCEL_BIAS_BOUND, GYRO_BIAS_BOUND, SCALE_BOUND};
 use crate::config::units::{Unit, ARCMIN, ARCSEC, DEG, DEG_PER_H, MG, PERCENT, PPM, SI, UG};
 use crate::config::vec3::V3;
 use crate::scenario::InitialUncertainty;
+use kestrel_io::gins::physical;
 
 /// The P0 table as written.
 #[derive(Debug, Default, Deserialize, Serialize)]
@@ -66,22 +68,42 @@ pub(crate) struct P0Table {
     pub accel_scale_percent: Option<V3>,
 }
 
+/// The initial attitude σ's bound: 180°, every heading.
+const ATTITUDE_BOUND: Bound = Bound {
+    max_si: physical::ATTITUDE_SIGMA,
+    beyond: "180°, every attitude",
+};
+/// The initial velocity σ's bound.
+const VELOCITY_BOUND: Bound = Bound {
+    max_si: physical::VELOCITY_SIGMA,
+    beyond: "1000 m/s, beyond any vehicle's speed",
+};
+/// The initial position σ's bound.
+const POSITION_BOUND: Bound = Bound {
+    max_si: physical::POSITION_SIGMA,
+    beyond: "10 000 km, anywhere on Earth",
+};
+
 impl P0Table {
     /// The table at key path `prefix` in SI: attitude, velocity and
     /// position required and positive, every sensor error 0 (none) or
     /// positive; each a standard deviation whose variance is a normal
     /// double.
     pub(crate) fn uncertainty(&self, prefix: &str) -> Res<InitialUncertainty> {
-        let required = |stem: &str, given: &[(&Unit, Option<V3>)]| -> Res<_> {
-            sigma(prefix, stem, given, false)?.ok_or_else(|| {
+        let required = |stem: &str, given: &[(&Unit, Option<V3>)], b: Bound| -> Res<_> {
+            let v = sigma(prefix, stem, given, false)?.ok_or_else(|| {
                 crate::config::check::bad(
                     crate::config::check::join(prefix, stem),
                     "missing: the initial σ of attitude, velocity and position are required",
                 )
-            })
+            })?;
+            bounded(prefix, stem, given, b)?;
+            Ok(v)
         };
-        let optional = |stem: &str, given: &[(&Unit, Option<V3>)]| -> Res<_> {
-            Ok(sigma(prefix, stem, given, true)?.unwrap_or_default())
+        let optional = |stem: &str, given: &[(&Unit, Option<V3>)], b: Bound| -> Res<_> {
+            let v = sigma(prefix, stem, given, true)?.unwrap_or_default();
+            bounded(prefix, stem, given, b)?;
+            Ok(v)
         };
         let one = |x: Option<f64>| x.map(|x| V3([x; 3]));
         let (deg, dph) = (DEG.bare(), DEG_PER_H.bare());
@@ -92,6 +114,7 @@ impl P0Table {
                 (&PPM, one(self.odometer_scale_ppm)),
                 (&PERCENT, one(self.odometer_scale_percent)),
             ],
+            SCALE_BOUND,
         )
         .map_err(scalar_key)?;
         Ok(InitialUncertainty {
@@ -103,6 +126,7 @@ impl P0Table {
                     (&ARCMIN, self.attitude_arcmin),
                     (&ARCSEC, self.attitude_arcsec),
                 ],
+                ATTITUDE_BOUND,
             )?,
             velocity: required(
                 "velocity",
@@ -110,6 +134,7 @@ impl P0Table {
                     (&SI, self.velocity),
                     (&crate::config::units::M_S, self.velocity_m_s),
                 ],
+                VELOCITY_BOUND,
             )?,
             position: required(
                 "position",
@@ -117,6 +142,7 @@ impl P0Table {
                     (&SI, self.position),
                     (&crate::config::units::M, self.position_m),
                 ],
+                POSITION_BOUND,
             )?,
             gyro_bias: optional(
                 "gyro_bias",
@@ -124,6 +150,7 @@ impl P0Table {
                     (&dph, self.gyro_bias),
                     (&DEG_PER_H, self.gyro_bias_deg_per_h),
                 ],
+                GYRO_BIAS_BOUND,
             )?,
             gyro_markov: optional(
                 "gyro_markov",
@@ -131,6 +158,7 @@ impl P0Table {
                     (&dph, self.gyro_markov),
                     (&DEG_PER_H, self.gyro_markov_deg_per_h),
                 ],
+                GYRO_BIAS_BOUND,
             )?,
             accel_bias: optional(
                 "accel_bias",
@@ -139,6 +167,7 @@ impl P0Table {
                     (&UG, self.accel_bias_ug),
                     (&MG, self.accel_bias_mg),
                 ],
+                ACCEL_BIAS_BOUND,
             )?,
             odometer_scale: odometer.x,
             gyro_scale: optional(
@@ -148,6 +177,7 @@ impl P0Table {
                     (&PPM, self.gyro_scale_ppm),
                     (&PERCENT, self.gyro_scale_percent),
                 ],
+                SCALE_BOUND,
             )?,
             accel_scale: optional(
                 "accel_scale",
@@ -156,6 +186,7 @@ impl P0Table {
                     (&PPM, self.accel_scale_ppm),
                     (&PERCENT, self.accel_scale_percent),
                 ],
+                SCALE_BOUND,
             )?,
         })
     }

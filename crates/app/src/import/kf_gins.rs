@@ -16,6 +16,7 @@ use crate::config::units::{DEG_PER_H, UG};
 use crate::config::vec3::V3;
 use crate::config::write::commented_toml;
 use crate::{Error, InputError};
+use kestrel_io::gins::physical;
 
 /// The keys of a KF-GINS configuration this importer knows.
 const KEYS: &[&str] = &[
@@ -154,6 +155,17 @@ pub fn kf_gins(text: &str, path: &Path, out: Option<&Path>) -> Result<Imported, 
     header.extend(warnings.iter().map(|w| format!("NOT IMPORTED — {w}")));
     header.push(format!("Run with:  {command}"));
     let toml = commented_toml(&file, &header, &comments).map_err(Error::Failed)?;
+    // Whatever the YAML-level checks miss, `process` would refuse when it
+    // reads the file: read it here, so an import never writes a
+    // configuration `process` will not take.
+    crate::config::process::parse(&toml, Path::new("the converted configuration")).map_err(
+        |e| {
+            InputError::file(
+                path,
+                format!("cannot be imported: a value converts outside kestrel's range ({e})"),
+            )
+        },
+    )?;
     Ok(Imported {
         toml,
         warnings,
@@ -287,14 +299,20 @@ fn not_imported(r: &Reader<'_>, noise: &Reader<'_>, path: &Path) -> Result<Vec<S
 /// `[imu]`: the noise densities and the biases' Gauss-Markov model.
 fn imu(noise: &Reader<'_>, c: &mut Comments) -> Result<ImuTable, Error> {
     let corr = noise.number_in("imunoise", "corrtime")?;
-    if corr.is_nan() || corr <= 0.0 {
+    let tau = corr * 3600.0;
+    let min_h = physical::CORRELATION_TIME_MIN / 3600.0;
+    // Infinity (a bias held constant) is `inf` in kestrel's file; a finite
+    // time whose seconds overflow is a unit mistake, not a constant.
+    if !(tau >= physical::CORRELATION_TIME_MIN && (tau.is_finite() || corr.is_infinite())) {
         return Err(noise.err_in(
             "imunoise",
             "corrtime",
-            format!("expected a time > 0 h, found {corr}"),
+            format!(
+                "expected a time in hours ≥ {min_h:.4e} (1 ms) whose seconds are finite, found {}",
+                physical::show(corr)
+            ),
         ));
     }
-    let tau = corr * 3600.0;
     let gbstd = noise.same("imunoise", "gbstd")?;
     let abstd = noise.same("imunoise", "abstd")?;
     c.push(("imu.gyro_arw".into(), "imunoise.arw (deg/√h)".into()));

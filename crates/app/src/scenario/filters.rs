@@ -159,6 +159,10 @@ impl FadeBlock {
     }
 }
 
+/// The state size of the federated filters' local filters (the 15-state
+/// error model).
+pub(crate) const FEDERATED_STATES: usize = 15;
+
 impl FilterKind {
     /// Every kind's name in configuration files, in the order of the enum.
     pub const NAMES: [&'static str; 9] = [
@@ -366,6 +370,15 @@ impl FilterKind {
                     Some(("beta", "a finite beta ≥ 0", beta))
                 } else if !kappa.is_finite() {
                     Some(("kappa", "a finite kappa", kappa))
+                } else if kestrel::sigma::MerweParams::new(alpha, beta, kappa)
+                    .weights(FEDERATED_STATES)
+                    .is_none()
+                {
+                    Some((
+                        "kappa",
+                        "kappa > -15 (the 15 states of the local filter: n + kappa > 0)",
+                        kappa,
+                    ))
                 } else {
                     None
                 }

@@ -389,3 +389,95 @@ fn the_imu_model_is_one_table_in_both_files() {
         .to_string();
     assert!(e.contains("the same on every axis"), "{e}");
 }
+
+/// Values a `process` configuration used to accept and the run failed on
+/// later without naming the key, or ran on silently (impossible values):
+/// each refused at load with the key, the range and the value.
+#[test]
+fn impossible_values_are_refused_at_load_with_the_key_and_the_range() {
+    use kestrel_app::config::process::parse;
+    let base = "[initial]\ntime = 0\nposition = [30, 114, 20]\nattitude = [0, 0, 0]\n\
+                [initial.std]\nattitude = [1, 1, 1]\nvelocity = [1, 1, 1]\nposition = [1, 1, 1]\n";
+    let zupt = "[zupt]\naccel_std = 0.05\ngyro_std = 0.2\nrate = 10\nvelocity_std = 0.01\n";
+    let refused: Vec<(String, &str, &str)> =
+        vec![
+        (
+            "[imu]\ngyro_markov_sigma = 1\ngyro_markov_tau = 1e-300\n".into(),
+            "imu.gyro_markov_tau",
+            "expected a time ≥ 0.001 s (or inf; a shorter correlation is white noise), \
+             found 1e-300",
+        ),
+        (
+            "[imu]\naccel_markov_sigma = 1\naccel_markov_tau = 1e-300\n".into(),
+            "imu.accel_markov_tau",
+            "expected a time ≥ 0.001 s (or inf; a shorter correlation is white noise), \
+             found 1e-300",
+        ),
+        (
+            "[imu]\nscale_tau = 1e-300\n[filter]\nerror_model = \"ins21\"\n".into(),
+            "imu.scale_tau",
+            "expected a time ≥ 0.001 s (or inf; a shorter correlation is white noise), \
+             found 1e-300",
+        ),
+        (
+            "[imu]\ngyro_arw = 1e100\n".into(),
+            "imu.gyro_arw",
+            "expected at most 100 in magnitude (100 °/√h, beyond any gyro's noise), found 1e100",
+        ),
+        (
+            "[filter]\nlever_arm = [0, 1e308, 0]\n".into(),
+            "filter.lever_arm[1]",
+            "expected a lever arm in [-100, 100] m, found 1e308",
+        ),
+        (
+            "[nhc]\nrate = 5\nstd = [0.1, 0.1]\nlever_arm = [1000, 0, 0]\n".into(),
+            "nhc.lever_arm[0]",
+            "expected a lever arm in [-100, 100] m, found 1000",
+        ),
+        (
+            format!("{}accel_std = 1e300\n", zupt.replace("accel_std = 0.05\n", "")),
+            "zupt.accel_std",
+            "expected a standstill threshold in [0, 2] m/s², found 1e300",
+        ),
+        (
+            format!("{}gyro_std = 1e300\n", zupt.replace("gyro_std = 0.2\n", "")),
+            "zupt.gyro_std",
+            "expected a standstill threshold in [0, 20] deg/s, found 1e300",
+        ),
+        (
+            format!("{zupt}max_speed = 1e300\n"),
+            "zupt.max_speed",
+            "expected a standstill speed in [0, 2] m/s, found 1e300",
+        ),
+        (
+            "[alignment]\nstatic_time = 60\nyaw = \"gnss-course\"\nmin_speed = 1e-300\n".into(),
+            "alignment.min_speed",
+            "expected a speed at which the GNSS course gives the heading in [1, 1000] m/s, \
+             found 1e-300",
+        ),
+    ];
+    for (extra, key, message) in &refused {
+        let text = format!("{base}{extra}");
+        let e = parse(&text, "p.toml".as_ref()).unwrap_err().to_string();
+        assert_located(&e, &text, key, message);
+    }
+    // The week is a key of [initial], before [initial.std].
+    let text = base.replace("time = 0\n", "time = 0\nweek = 4294967295\n");
+    let e = parse(&text, "p.toml".as_ref()).unwrap_err().to_string();
+    assert_located(
+        &e,
+        &text,
+        "initial.week",
+        "expected a GPS week in [0, 9999] (the full week number, not modulo 1024), \
+         found 4294967295",
+    );
+    let text = base.replace("position = [1, 1, 1]", "position = [1e200, 1, 1]");
+    let e = parse(&text, "p.toml".as_ref()).unwrap_err().to_string();
+    assert!(e.contains("initial.std.position"), "{e}");
+    // The bounds themselves are accepted.
+    let ok = format!(
+        "{base}[filter]\nlever_arm = [100, -100, 0]\n\
+         [zupt]\naccel_std = 2\ngyro_std = 20\nrate = 10\nvelocity_std = 0.01\nmax_speed = 2\n"
+    );
+    parse(&ok, "p.toml".as_ref()).unwrap();
+}

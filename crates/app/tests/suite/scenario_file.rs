@@ -527,3 +527,76 @@ fn extreme_values_never_panic() {
         }
     }
 }
+
+/// Values a scenario file used to accept and every run then failed on
+/// (`run` still exiting 0), or ran on silently: each refused at load with
+/// the key, the range and the value. `forgetting = 1` (documented as
+/// valid) is accepted.
+#[test]
+fn values_every_run_would_fail_on_are_refused_at_load() {
+    let cases = [
+        (
+            "name = \"t\"",
+            "name = \"t\"\nearth_gm_m3_s2 = 1e-300",
+            "scenario.earth_gm_m3_s2",
+            "expected a value within 1 % of WGS-84's 3.986004418e14 m³/s², found 1e-300",
+        ),
+        (
+            "name = \"t\"",
+            "name = \"t\"\nearth_flattening = 0.5",
+            "scenario.earth_flattening",
+            "expected a number in [0, 0.01], found 0.5",
+        ),
+        (
+            "kind = \"standard\"",
+            "kind = \"federated-ukf\"\nkappa = -100",
+            "filters[0].kappa",
+            "expected kappa > -15 (the 15 states of the local filter: n + kappa > 0), found -100",
+        ),
+        (
+            "error_model = \"ins15\"",
+            "error_model = \"ins18\"",
+            "filters[0].kind",
+            "`federated-ukf` runs on the 15-state error model only; set \
+             filter.error_model = \"ins15\"",
+        ),
+        (
+            "velocity_std_m_s = 0.1\n",
+            "velocity_std_m_s = 0.1\nlever_arm_m = [0.0, 1000.0, 0.0]\n",
+            "gnss.lever_arm_m[1]",
+            "expected a lever arm in [-100, 100] m, found 1000",
+        ),
+        (
+            "[filter.p0]\nattitude_deg = 0.1\nvelocity_m_s = 0.1\nposition_m = 3.0",
+            "[filter.p0]\nattitude_deg = 0.1\nvelocity_m_s = 0.1\nposition_m = 1e100",
+            "filter.p0.position_m",
+            "expected at most 10000000 in magnitude (10 000 km, anywhere on Earth), found 1e100",
+        ),
+        (
+            "rate_hz = 100.0",
+            "rate_hz = 100.0\ngyro_arw_deg_per_sqrt_h = 1e100",
+            "imu.gyro_arw_deg_per_sqrt_h",
+            "expected at most 100 in magnitude (100 °/√h, beyond any gyro's noise), found 1e100",
+        ),
+    ];
+    for (from, to, key, message) in cases {
+        let text = if to.contains("ins18") {
+            BASE.replacen(from, to, 1).replacen(
+                "kind = \"standard\"",
+                "kind = \"federated-ukf\"",
+                1,
+            )
+        } else {
+            BASE.replacen(from, to, 1)
+        };
+        assert_ne!(text, BASE, "{from}");
+        let e = match parse(&text, Path::new("bad.toml")) {
+            Ok(_) => panic!("accepted `{to}`"),
+            Err(e) => e.to_string(),
+        };
+        let tail = format!(": key `{key}`: {message}");
+        assert!(e.ends_with(&tail), "`{to}`: {e}\n  expected …{tail}");
+    }
+    let one = BASE.replacen("forgetting = 0.97", "forgetting = 1.0", 1);
+    parse(&one, Path::new("ok.toml")).unwrap();
+}

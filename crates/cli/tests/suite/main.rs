@@ -5,6 +5,7 @@ mod support;
 
 mod alignment;
 mod constraints;
+mod integrity;
 mod plots;
 mod process_cli;
 mod real_logs;

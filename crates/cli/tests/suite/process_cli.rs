@@ -249,9 +249,9 @@ fn configuration_errors_name_the_line_column_or_key() {
         ("kind = ", "kind = \"sage-husa-fading\"\nlambda_max = 0.5\n#", "filter.lambda_max", "expected at least 1, found 0.5"),
         ("kind = ", "kind = \"ekf\"\nrho = 0.5\n#", "filter.rho", "does not apply to kind = \"ekf\", which takes no parameters"),
         ("kind = ", "kind = \"kalman\"\n#", "filter.kind", "unknown value `kalman`, expected one of `ekf`, `sage-husa-fading`, `improved-adaptive`, `federated-ukf`, `federated-sr-ukf`, `ict-erekf`, `max-threshold`, `fuzzy-adaptive`, `strong-tracking-fading`"),
-        ("position = [", "position = [91.0, 0.0, 0.0]\n#", "initial.position[0]", "expected a latitude in [-90, 90] deg, found 91"),
+        ("position = [", "position = [91.0, 0.0, 0.0]\n#", "initial.position[0]", "expected a latitude in [-89.9, 89.9] deg, found 91"),
         ("position_std = ", "position_std = [1.0, 0.0, 1.0]\n#", "gnss.position_std[1]", "expected a standard deviation > 0 whose square in SI units is a normal double (neither 0 nor infinite), found 0"),
-        ("gyro_markov_tau = ", "gyro_markov_tau = -5.0\n#", "imu.gyro_markov_tau", "expected a time > 0 s (or inf), found -5"),
+        ("gyro_markov_tau = ", "gyro_markov_tau = -5.0\n#", "imu.gyro_markov_tau", "expected a time ≥ 0.001 s (or inf; a shorter correlation is white noise), found -5"),
     ];
     for (find, replace, key, msg) in cases {
         let text = good.replacen(find, replace, 1);
@@ -385,12 +385,13 @@ fn outage_windows_drop_the_fixes_inside_them() {
     assert_ne!(at_20.0, at_20.1);
 }
 
+/// An absurd velocity increment (1e308 m/s at 0.505 s), which used to make
+/// the solution non-finite mid-run ("KF diverged … no longer finite"), is
+/// refused by the reader at its line and column with the rate it means.
 #[test]
-fn a_divergence_is_reported_with_its_time() {
+fn an_absurd_increment_is_refused_at_its_line() {
     let dir = sim("002", 1, 3.0);
     let imu = std::fs::read_to_string(dir.join("imu.txt")).unwrap();
-    // An absurd velocity increment at 0.505 s makes the solution
-    // non-finite (between two covariance propagations).
     let mut lines: Vec<String> = imu.lines().map(String::from).collect();
     let k = lines.iter().position(|l| l.starts_with("0.505 ")).unwrap();
     let mut f: Vec<String> = lines[k].split(' ').map(String::from).collect();
@@ -401,14 +402,18 @@ fn a_divergence_is_reported_with_its_time() {
     let e = process(&args(&dir, false), &Context::default())
         .unwrap_err()
         .to_string();
-    assert_eq!(
-        e,
-        format!(
-            "KF diverged at 0.505 s of week after IMU line {}:{}: the navigation solution is \
-             no longer finite",
-            dir.join("imu.txt").display(),
-            k + 1
-        )
+    let at = format!(
+        "{}:{}:5: a velocity increment of 1e308 m/s in ",
+        dir.join("imu.txt").display(),
+        k + 1
+    );
+    assert!(e.starts_with(&at), "{e}");
+    assert!(
+        e.ends_with(
+            "is inf m/s², beyond any IMU's range (at most 9806.65 m/s², 1000 g; is the \
+                     column in the right unit?)"
+        ),
+        "{e}"
     );
 }
 
@@ -585,6 +590,9 @@ fn a_kf_gins_configuration_imports_with_every_unit_exact() {
         ("arw: [0.003, 0.003, 0.003]", "arw: [0.003, 0.004, 0.003]", "imunoise.arw", "kestrel's IMU noise is the same on the three axes: found [0.003, 0.004, 0.003]"),
         ("imudatarate: 200", "imudatarate: 200\nodometer: true", "odometer", "not a KF-GINS key kestrel knows; remove it or convert it by hand"),
         ("antlever:  [ 0.136, -0.301, -0.184 ]", "antlever:  [ 0.136, -0.301 ]", "antlever", "expected a list of exactly 3 numbers"),
+        // Hours whose seconds overflow were taken as a constant bias.
+        ("corrtime: 4.0", "corrtime: 1e306", "imunoise.corrtime", "expected a time in hours ≥ 2.7778e-7 (1 ms) whose seconds are finite, found 1e306"),
+        ("corrtime: 4.0", "corrtime: 1e-300", "imunoise.corrtime", "expected a time in hours ≥ 2.7778e-7 (1 ms) whose seconds are finite, found 1e-300"),
     ];
     for (from, to, key, msg) in cases {
         let e = kf_gins(&KF_GINS.replace(from, to), yaml, None)
@@ -592,6 +600,21 @@ fn a_kf_gins_configuration_imports_with_every_unit_exact() {
             .to_string();
         assert_eq!(e, format!("kf-gins.yaml: key `{key}`: {msg}"));
     }
+    // What converts outside the range `process` accepts is refused at
+    // import, not written for `process` to refuse later.
+    let e = kf_gins(
+        &KF_GINS.replace("arw: [0.003, 0.003, 0.003]", "arw: [1e100, 1e100, 1e100]"),
+        yaml,
+        None,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.starts_with(
+            "kf-gins.yaml: cannot be imported: a value converts outside kestrel's range ("
+        ) && e.contains("key `imu.gyro_arw`: expected at most 100 in magnitude"),
+        "{e}"
+    );
     let e = kf_gins("a: [1, 2\n", yaml, None).unwrap_err().to_string();
     assert!(e.starts_with("kf-gins.yaml:"), "{e}");
     // The binary writes the file and refuses to overwrite it.

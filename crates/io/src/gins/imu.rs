@@ -9,6 +9,7 @@ use kestrel_nav::ImuIncrement;
 
 use super::imu_format::{ImuFormat, Measures, Sample, TimeBase};
 use super::line::{open, Fields, Lines};
+use super::physical;
 use super::stream::Stream;
 use crate::{Error, InputError};
 
@@ -76,6 +77,8 @@ pub struct ImuReader<R> {
     stream: Stream<R>,
     /// A configured layout (`None`: the GINS format).
     configured: Option<Configured>,
+    /// The time of the previous record, for the rates its increments mean.
+    previous: Option<f64>,
 }
 
 /// What a reader of a configured layout keeps.
@@ -122,6 +125,7 @@ impl<R: BufRead> ImuReader<R> {
         Self {
             stream: Stream::new(Lines::new(reader, path, NAMES, &[7, 8], LAYOUT)),
             configured: None,
+            previous: None,
         }
     }
 
@@ -141,6 +145,7 @@ impl<R: BufRead> ImuReader<R> {
                 start,
                 previous: None,
             }),
+            previous: None,
         }
     }
 
@@ -163,13 +168,77 @@ impl<R: BufRead> Iterator for ImuReader<R> {
 
     /// The next record; after an error the reader ends.
     fn next(&mut self) -> Option<Self::Item> {
+        let record = self.read()?;
+        Some(record.and_then(|r| {
+            let checked = plausible(&r, self.previous, self.stream.path());
+            self.previous = Some(r.time);
+            checked.map(|()| r)
+        }))
+    }
+}
+
+/// Refuses a record whose increments mean a rotation rate or a specific
+/// force beyond any IMU's range ([`ROTATION_RATE`](physical::ROTATION_RATE),
+/// [`SPECIFIC_FORCE`](physical::SPECIFIC_FORCE)) over the interval since
+/// the `previous` record (the first record has none and is not judged).
+fn plausible(r: &ImuRecord, previous: Option<f64>, path: &Path) -> Result<(), InputError> {
+    let Some(t0) = previous else { return Ok(()) };
+    let dt = r.time - t0;
+    if dt <= 0.0 {
+        return Ok(());
+    }
+    let checks = [
+        (
+            r.dtheta,
+            2,
+            "a rotation",
+            "rad",
+            "rad/s",
+            physical::ROTATION_RATE,
+            "125.7 rad/s, 20 turns a second",
+        ),
+        (
+            r.dvel,
+            5,
+            "a velocity increment",
+            "m/s",
+            "m/s²",
+            physical::SPECIFIC_FORCE,
+            "9806.65 m/s², 1000 g",
+        ),
+    ];
+    for (v, column, what, unit, per_s, max, bound) in checks {
+        for k in 0..3 {
+            let rate = v[k].abs() / dt;
+            if rate.is_nan() || rate > max {
+                return Err(InputError::at(
+                    path,
+                    r.line,
+                    column + k,
+                    format!(
+                        "{what} of {} {unit} in {} s is {} {per_s}, beyond any IMU's range \
+                         (at most {bound}; is the column in the right unit?)",
+                        physical::show(v[k]),
+                        physical::show((dt * 1e9).round() / 1e9),
+                        physical::show(rate),
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+impl<R: BufRead> ImuReader<R> {
+    /// The next record as the file has it.
+    fn read(&mut self) -> Option<Result<ImuRecord, InputError>> {
         if let Some(c) = self.configured.as_mut() {
             return self.stream.next(|s, f| configured_record(c, s, f));
         }
         self.stream.next(|s, f| {
             let v = &f.values;
             let time = s.advance_seconds(f)?;
-            s.speeds(f, &[7])?;
+            s.wheel_speeds(f, &[7])?;
             Ok(ImuRecord {
                 time,
                 dtheta: Vector3::new(v[1], v[2], v[3]),
@@ -208,7 +277,7 @@ fn configured_record<R: BufRead>(
     };
     let sample = Sample::from_values(&c.format, v, &c.to_vehicle);
     if c.format.odometer.is_some() {
-        s.speeds(f, &[f.count - 1])?;
+        s.wheel_speeds(f, &[f.count - 1])?;
     }
     let (dtheta, dvel) = match c.format.measures {
         Measures::Increments => (sample.gyro, sample.accel),

@@ -24,14 +24,14 @@ pub struct SpeedRecord {
 }
 
 /// Streams [`SpeedRecord`]s; times must increase, speeds lie within
-/// ±1000 m/s.
+/// ±[`WHEEL_SPEED`](super::physical::WHEEL_SPEED) (200 m/s).
 ///
 /// ```
 /// use kestrel_io::gins::OdometerReader;
 /// let r: Vec<_> = OdometerReader::new("0.1 5.5\n0.2 5.6\n".as_bytes(), "odo.txt".as_ref()).collect();
 /// assert_eq!(r[1].as_ref().unwrap().speed, 5.6);
 /// let e = OdometerReader::new("0.1 1e9\n".as_bytes(), "odo.txt".as_ref()).next().unwrap();
-/// assert!(e.unwrap_err().to_string().starts_with("odo.txt:1:2: expected a speed"));
+/// assert!(e.unwrap_err().to_string().starts_with("odo.txt:1:2: expected an odometer speed"));
 /// ```
 #[derive(Debug)]
 pub struct OdometerReader<R> {
@@ -69,7 +69,7 @@ impl<R: BufRead> Iterator for OdometerReader<R> {
     fn next(&mut self) -> Option<Self::Item> {
         self.stream.next(|s, f| {
             let time = s.advance_seconds(f)?;
-            s.speeds(f, &[1])?;
+            s.wheel_speeds(f, &[1])?;
             Ok(SpeedRecord {
                 time,
                 speed: f.get(1),

@@ -146,9 +146,25 @@ impl<R: BufRead> Stream<R> {
     /// Checks that the values in `columns` (0-based) are speeds within
     /// ±[`SPEED`](physical::SPEED).
     pub(crate) fn speeds(&self, f: &Fields, columns: &[usize]) -> Result<(), InputError> {
-        let range = (-physical::SPEED, physical::SPEED);
+        self.within(f, columns, "a speed", physical::SPEED)
+    }
+
+    /// Checks that the values in `columns` (0-based) are odometer speeds
+    /// within ±[`WHEEL_SPEED`](physical::WHEEL_SPEED).
+    pub(crate) fn wheel_speeds(&self, f: &Fields, columns: &[usize]) -> Result<(), InputError> {
+        self.within(f, columns, "an odometer speed", physical::WHEEL_SPEED)
+    }
+
+    /// Checks that the values in `columns` are speeds (`what`) within ±`max`.
+    fn within(
+        &self,
+        f: &Fields,
+        columns: &[usize],
+        what: &str,
+        max: f64,
+    ) -> Result<(), InputError> {
         for &c in columns.iter().filter(|&&c| c < f.count) {
-            if let Some(m) = physical::outside("a speed", "m/s", f.get(c), range) {
+            if let Some(m) = physical::outside(what, "m/s", f.get(c), (-max, max)) {
                 return Err(self.at(f, c + 1, m));
             }
         }

@@ -198,7 +198,7 @@ fn degrees_written_convert_back_to_the_same_radians() {
 fn blank_lines_comments_and_trailing_comments_are_ignored() {
     let p = tmp(
         "imu.txt",
-        "# header\n\n   \n0.01 1 2 3 4 5 6 # trailing\n\t\n# more\n0.02 1 2 3 4 5 6\n",
+        "# header\n\n   \n0.01 0.1 0.2 0.3 4 5 6 # trailing\n\t\n# more\n0.02 0.1 0.2 0.3 4 5 6\n",
     );
     let r: Vec<_> = ImuReader::open(&p).unwrap().map(Result::unwrap).collect();
     assert_eq!(r.iter().map(|r| r.line).collect::<Vec<_>>(), [4, 7]);
@@ -422,7 +422,19 @@ fn gnss_values_out_of_range_are_refused() {
     let (p, e) = gnss_error("1 95 114 10 1 1 1\n");
     assert_eq!(
         e,
-        at(&p, "1:2: expected a latitude in [-90, 90] deg, found 95")
+        at(
+            &p,
+            "1:2: expected a latitude in [-89.9, 89.9] deg, found 95"
+        )
+    );
+    // A fix at a pole, where the local-level mechanisation is singular.
+    let (p, e) = gnss_error("1 -90 114 10 1 1 1\n");
+    assert_eq!(
+        e,
+        at(
+            &p,
+            "1:2: expected a latitude in [-89.9, 89.9] deg, found -90"
+        )
     );
     let (p, e) = gnss_error("1 30 114 10 1e-200 1 1\n");
     assert_eq!(
@@ -457,7 +469,10 @@ fn gnss_values_out_of_range_are_refused() {
     let (p, e) = imu_error("0.01 0 0 0 0 0 0 1e30\n");
     assert_eq!(
         e,
-        at(&p, "1:8: expected a speed in [-1000, 1000] m/s, found 1e30")
+        at(
+            &p,
+            "1:8: expected an odometer speed in [-200, 200] m/s, found 1e30"
+        )
     );
     let (p, e) = nav_error("2300.5 1 30 114 10 0 0 0 0 0 0\n");
     assert_eq!(e, at(&p, "1:1: expected a whole GNSS week, found 2300.5"));
@@ -528,6 +543,57 @@ fn line_ends_byte_order_marks_and_stray_bytes() {
             &p,
             "1:4: byte 0xB5 at byte 10 of the line is not UTF-8 text (only comments after `#` \
              may hold other bytes)"
+        )
+    );
+}
+
+/// Increments no IMU can measure (a column in the wrong unit) and wheel
+/// speeds no vehicle drives are refused at their line, with the rate they
+/// mean and the bound.
+#[test]
+fn physically_impossible_imu_and_odometer_values_are_refused() {
+    // 1000 rad in one 5 ms increment: 200 000 rad/s.
+    let (p, e) = imu_error("0.000 0 0 0 0 0 0\n0.005 1000 0 0 0 0 0\n");
+    assert_eq!(
+        e,
+        at(
+            &p,
+            "2:2: a rotation of 1000 rad in 0.005 s is 200000 rad/s, beyond any IMU's range \
+             (at most 125.7 rad/s, 20 turns a second; is the column in the right unit?)"
+        )
+    );
+    let (p, e) = imu_error("0.000 0 0 0 0 0 0\n0.005 0 0 0 0 0 -100\n");
+    assert_eq!(
+        e,
+        at(
+            &p,
+            "2:7: a velocity increment of -100 m/s in 0.005 s is 20000 m/s², beyond any IMU's \
+             range (at most 9806.65 m/s², 1000 g; is the column in the right unit?)"
+        )
+    );
+    // The bound itself is a rate an IMU can report.
+    let p = tmp("imu.txt", "0.000 0 0 0 0 0 0\n0.005 0.6 0 0 0 0 49\n");
+    assert!(ImuReader::open(&p).unwrap().all(|r| r.is_ok()));
+    // An odometer column at −999 m/s, in the IMU file and on its own.
+    let (p, e) = imu_error("0.000 0 0 0 0 0 0 -999\n");
+    assert_eq!(
+        e,
+        at(
+            &p,
+            "1:8: expected an odometer speed in [-200, 200] m/s, found -999"
+        )
+    );
+    let p = tmp("odometer.txt", "0.0 1.0\n0.1 -999\n");
+    let e = kestrel_io::gins::OdometerReader::open(&p)
+        .unwrap()
+        .find_map(Result::err)
+        .expect("an error")
+        .to_string();
+    assert_eq!(
+        e,
+        at(
+            &p,
+            "2:2: expected an odometer speed in [-200, 200] m/s, found -999"
         )
     );
 }

@@ -26,14 +26,6 @@ impl Check<'_> {
         self.source.error(key, msg)
     }
 
-    pub(super) fn finite(&self, key: &str, x: f64) -> Result<f64, InputError> {
-        if x.is_finite() {
-            Ok(x)
-        } else {
-            Err(self.err(key, format!("expected a finite number, found {x}")))
-        }
-    }
-
     pub(super) fn non_negative(&self, key: &str, x: f64) -> Result<f64, InputError> {
         if x.is_finite() && x >= 0.0 {
             Ok(x)
@@ -50,12 +42,21 @@ impl Check<'_> {
         }
     }
 
-    /// A correlation time: positive, `inf` (or absent) for none.
+    /// A correlation time: at least
+    /// [`CORRELATION_TIME_MIN`](physical::CORRELATION_TIME_MIN), `inf` (or
+    /// absent) for none.
     pub(super) fn tau(&self, key: &str, x: Option<f64>) -> Result<f64, InputError> {
         match x {
             None => Ok(f64::INFINITY),
-            Some(t) if t > 0.0 => Ok(t),
-            Some(t) => Err(self.err(key, format!("expected a time > 0 s (or inf), found {t}"))),
+            Some(t) if t >= physical::CORRELATION_TIME_MIN => Ok(t),
+            Some(t) => Err(self.err(
+                key,
+                format!(
+                    "expected a time ≥ {} s (or inf; a shorter correlation is white noise), found {}",
+                    physical::CORRELATION_TIME_MIN,
+                    physical::show(t)
+                ),
+            )),
         }
     }
 
@@ -71,6 +72,47 @@ impl Check<'_> {
             out[i] = unit(each(self, &format!("{key}[{i}]"), *x)?);
         }
         Ok(out)
+    }
+
+    /// A lever arm, m: each component within ±[`LEVER_ARM`](physical::LEVER_ARM).
+    pub(super) fn lever_arm(&self, key: &str, v: V3) -> Result<Vector3<f64>, InputError> {
+        let limit = physical::LEVER_ARM;
+        self.vec(
+            key,
+            v,
+            |c: &Self, k: &str, x: f64| c.within(k, "a lever arm", "m", x, (-limit, limit)),
+            id,
+        )
+    }
+
+    /// `initial.week`: a full GPS week number, at most
+    /// [`GPS_WEEK_MAX`](physical::GPS_WEEK_MAX) (its seconds must not wrap).
+    pub(super) fn week(&self, w: u32) -> Result<u32, InputError> {
+        if w <= physical::GPS_WEEK_MAX {
+            Ok(w)
+        } else {
+            Err(self.err(
+                "initial.week",
+                format!(
+                    "expected a GPS week in [0, {}] (the full week number, not modulo 1024), found {w}",
+                    physical::GPS_WEEK_MAX
+                ),
+            ))
+        }
+    }
+
+    /// `x` > 0 and at most `max` (a detector threshold whose larger values
+    /// would accept anything).
+    pub(super) fn positive_at_most(
+        &self,
+        key: &str,
+        what: &str,
+        unit: &str,
+        x: f64,
+        max: f64,
+    ) -> Result<f64, InputError> {
+        let x = self.positive(key, x)?;
+        self.within(key, what, unit, x, (0.0, max))
     }
 
     /// A standard deviation in the unit `unit` converts to SI: positive

@@ -156,7 +156,13 @@ impl Check<'_> {
                 (0.0, 86_400.0),
             )?,
             yaw,
-            min_speed: self.positive("alignment.min_speed", a.min_speed.unwrap_or(3.0))?,
+            min_speed: self.within(
+                "alignment.min_speed",
+                "a speed at which the GNSS course gives the heading",
+                "m/s",
+                a.min_speed.unwrap_or(3.0),
+                (physical::COURSE_MIN_SPEED, physical::SPEED),
+            )?,
             gyro_bias: a.gyro_bias.unwrap_or(yaw == YawSource::GnssCourse),
             max_accel_std: self
                 .positive("alignment.max_accel_std", a.max_accel_std.unwrap_or(0.1))?,
@@ -192,7 +198,7 @@ impl Check<'_> {
                     (-180.0, 360.0),
                 )?),
             ],
-            lever_arm: self.vec("nhc.lever_arm", n.lever_arm, Self::finite, id)?,
+            lever_arm: self.lever_arm("nhc.lever_arm", n.lever_arm)?,
         })
     }
 
@@ -205,8 +211,20 @@ impl Check<'_> {
                 self.positive("zupt.window", z.window.unwrap_or(1.0))?,
                 (0.0, 3_600.0),
             )?,
-            accel_std: self.positive("zupt.accel_std", z.accel_std)?,
-            gyro_std: deg(self.positive("zupt.gyro_std", z.gyro_std)?),
+            accel_std: self.positive_at_most(
+                "zupt.accel_std",
+                "a standstill threshold",
+                "m/s²",
+                z.accel_std,
+                physical::ZUPT_ACCEL_STD,
+            )?,
+            gyro_std: deg(self.positive_at_most(
+                "zupt.gyro_std",
+                "a standstill threshold",
+                "deg/s",
+                z.gyro_std,
+                physical::ZUPT_GYRO_STD,
+            )?),
             rate: self.within(
                 "zupt.rate",
                 "an update rate",
@@ -221,7 +239,13 @@ impl Check<'_> {
                 deg,
                 Zero::Absent,
             )?,
-            max_speed: self.positive("zupt.max_speed", z.max_speed.unwrap_or(0.5))?,
+            max_speed: self.positive_at_most(
+                "zupt.max_speed",
+                "a standstill speed",
+                "m/s",
+                z.max_speed.unwrap_or(0.5),
+                physical::ZUPT_MAX_SPEED,
+            )?,
         })
     }
 
@@ -246,7 +270,7 @@ impl Check<'_> {
                     (-180.0, 360.0),
                 )?),
             ],
-            lever_arm: self.vec("odometer.lever_arm", o.lever_arm, Self::finite, id)?,
+            lever_arm: self.lever_arm("odometer.lever_arm", o.lever_arm)?,
             scale_sigma: self.sigma("odometer.scale_sigma", o.scale_sigma, id, Zero::Absent)?,
         })
     }

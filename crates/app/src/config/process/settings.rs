@@ -30,7 +30,7 @@ impl Check<'_> {
         let gnss_noise = self.gnss_noise(&f.gnss)?;
         Ok(Settings {
             earth: f.earth.ellipsoid(),
-            week: i.week,
+            week: self.week(i.week)?,
             start,
             p0,
             initial_imu,
@@ -44,7 +44,7 @@ impl Check<'_> {
                 "filter.covariance_interval",
                 f.filter.covariance_interval.unwrap_or(0.1),
             )?,
-            lever_arm: self.vec("filter.lever_arm", f.filter.lever_arm, Self::finite, id)?,
+            lever_arm: self.lever_arm("filter.lever_arm", f.filter.lever_arm)?,
             gnss_noise,
             odometer,
             output_interval: self

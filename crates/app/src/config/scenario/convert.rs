@@ -1,15 +1,16 @@
 //! From the file's tables to a [`Scenario`]: the header and the initial
 //! errors here, the other tables in their own files.
 
-use crate::scenario::{InitialErrors, Scenario};
+use crate::scenario::{ErrorModelKind, FilterKind, InitialErrors, Scenario};
 use kestrel::nav::nalgebra::Vector3;
 use kestrel::nav::Ellipsoid;
 
 use super::convert_trajectory::trajectory;
 use super::schema::{Header, InitialErrorsSection, ScenarioFile};
 use super::{convert_filter, convert_gnss, convert_sensors};
-use crate::config::check::{bad, join, num, quantity, Range, Res};
+use crate::config::check::{bad, earth_constant, join, num, quantity, Range, Res};
 use crate::config::units::{ANGLE, SI};
+use kestrel_io::gins::physical;
 
 /// Checks every value and builds the scenario.
 pub(super) fn scenario(f: ScenarioFile) -> Res<Scenario> {
@@ -36,6 +37,17 @@ pub(super) fn scenario(f: ScenarioFile) -> Res<Scenario> {
         .enumerate()
         .map(|(i, e)| convert_filter::filter(&format!("filters[{i}]"), e))
         .collect::<Res<Vec<_>>>()?;
+    let setup = convert_filter::setup(&f.filter)?;
+    let federated = filters.iter().position(FilterKind::is_federated);
+    if let Some(i) = federated.filter(|_| !matches!(setup.error_model, ErrorModelKind::Ins15)) {
+        return Err(bad(
+            format!("filters[{i}].kind"),
+            format!(
+                "`{}` runs on the 15-state error model only; set filter.error_model = \"ins15\"",
+                filters[i].name()
+            ),
+        ));
+    }
     let s = Scenario {
         name: f.scenario.name,
         description: f.scenario.description,
@@ -47,7 +59,7 @@ pub(super) fn scenario(f: ScenarioFile) -> Res<Scenario> {
         odometer,
         attitude,
         initial_errors: initial_errors(&f.initial_errors)?,
-        filter: convert_filter::setup(&f.filter)?,
+        filter: setup,
         filters,
         seed: f.scenario.seed,
     };
@@ -73,21 +85,22 @@ pub(super) fn scenario(f: ScenarioFile) -> Res<Scenario> {
 fn earth(h: &Header) -> Res<Ellipsoid> {
     let mut e = h.earth.ellipsoid();
     let p = "scenario";
+    let wgs = Ellipsoid::wgs84();
     if let Some(a) = h.earth_a_m {
-        e.a = num(&join(p, "earth_a_m"), a, Range::Positive)?;
+        e.a = earth_constant(&join(p, "earth_a_m"), a, wgs.a, "m")?;
     }
     if let Some(f) = h.earth_flattening {
         e.f = num(
             &join(p, "earth_flattening"),
             f,
-            Range::Interval(0.0, 1.0, false, true),
+            Range::Interval(0.0, physical::EARTH_FLATTENING_MAX, false, false),
         )?;
     }
     if let Some(w) = h.earth_omega_rad_s {
-        e.omega_ie = num(&join(p, "earth_omega_rad_s"), w, Range::Any)?;
+        e.omega_ie = earth_constant(&join(p, "earth_omega_rad_s"), w, wgs.omega_ie, "rad/s")?;
     }
     if let Some(gm) = h.earth_gm_m3_s2 {
-        e.gm = num(&join(p, "earth_gm_m3_s2"), gm, Range::Positive)?;
+        e.gm = earth_constant(&join(p, "earth_gm_m3_s2"), gm, wgs.gm, "m³/s²")?;
     }
     Ok(e)
 }

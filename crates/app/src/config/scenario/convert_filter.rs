@@ -5,7 +5,7 @@ use kestrel::nav::nalgebra::Vector3;
 
 use super::convert_sensors::imu_spec;
 use super::schema_filter::{ErrorModelName, FilterSection, RSection};
-use crate::config::check::{bad, join, need, num, quantity, vec3, Range, Res};
+use crate::config::check::{bad, join, lever_arm, need, num, quantity, Range, Res};
 use crate::config::filter::{read_kind, Keys, Kinds};
 use crate::config::units::{ANGLE, SI};
 
@@ -61,7 +61,7 @@ pub(super) fn setup(f: &FilterSection) -> Res<FilterSetup> {
         p0,
         r: r(&f.r)?,
         lever_arm: f.lever_arm_m.map_or(Ok(Vector3::zeros()), |l| {
-            vec3(&join(p, "lever_arm_m"), l, Range::Any)
+            lever_arm(&join(p, "lever_arm_m"), l)
         })?,
         odometer_mounting: mounting,
     })

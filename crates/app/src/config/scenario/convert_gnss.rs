@@ -8,7 +8,7 @@ use super::convert_sensors::{bare_window, window};
 use super::schema_sensors::{
     GnssSection, NoiseWindowEntry, OutlierEntry, OutlierType, ReportedName,
 };
-use crate::config::check::{bad, join, need, num, reject, vec3, Range, Res};
+use crate::config::check::{bad, join, lever_arm, need, num, reject, vec3, Range, Res};
 use crate::config::vec3::V3;
 
 /// `[gnss]`.
@@ -23,7 +23,7 @@ pub(super) fn gnss(s: &GnssSection) -> Res<GnssConfig> {
         .transpose()?;
     let mut c = GnssConfig::new(rate, pos, vel);
     if let Some(l) = s.lever_arm_m {
-        c.lever_arm = vec3(&join(p, "lever_arm_m"), l, Range::Any)?;
+        c.lever_arm = lever_arm(&join(p, "lever_arm_m"), l)?;
     }
     c.reported_std = match s.reported_std {
         ReportedName::Nominal => ReportedStd::Nominal,

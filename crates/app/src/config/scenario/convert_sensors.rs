@@ -8,7 +8,7 @@ use kestrel::sim::{
 
 use super::schema_sensors::{AttitudeSection, FaultEntry, FaultType, OdometerSection, WindowEntry};
 use crate::config::check::{
-    bad, join, need, num, quantity, reject, scalar_quantity, vec3, Range, Res,
+    bad, join, lever_arm, need, num, quantity, reject, scalar_quantity, Range, Res,
 };
 use crate::config::imu::ImuTable;
 use crate::config::units::{ANGLE, RATIO};
@@ -98,7 +98,7 @@ pub(super) fn odometer(s: &OdometerSection) -> Res<OdometerConfig> {
         Range::NonNegative,
     )?;
     if let Some(l) = s.lever_arm_m {
-        c.lever_arm = vec3(&join(p, "lever_arm_m"), l, Range::Any)?;
+        c.lever_arm = lever_arm(&join(p, "lever_arm_m"), l)?;
     }
     c.faults = s
         .fault
