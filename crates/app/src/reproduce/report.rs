@@ -31,8 +31,15 @@ impl ReportInput<'_> {
         PositionAxes::for_scenario(&self.scenario.name)
     }
 
+    /// `metric` over the runs that completed with at least one aiding
+    /// epoch: a run without one has no RMS (never a 0).
     fn stats(&self, outcome: &FilterOutcome, metric: Metric) -> MeanStd {
-        MeanStd::of(outcome.completed().map(|s| metric.value(s)))
+        MeanStd::of(
+            outcome
+                .completed()
+                .filter(|s| s.rms_epochs > 0)
+                .map(|s| metric.value(s)),
+        )
     }
 }
 
@@ -78,8 +85,26 @@ pub fn text_report(input: &ReportInput<'_>) -> String {
     if let Some(paper) = input.paper {
         window_table(&mut out, input, paper);
     }
+    no_epochs(&mut out, input.outcomes);
     failures(&mut out, input.outcomes, plan);
     out
+}
+
+/// Says which filters had runs without an aiding epoch (their RMS is left
+/// out of the tables, shown as — when no run had one).
+fn no_epochs(out: &mut String, outcomes: &[FilterOutcome]) {
+    for o in outcomes {
+        let none = o.completed().filter(|s| s.rms_epochs == 0).count();
+        if none > 0 {
+            let _ = writeln!(
+                out,
+                "{}: {none} of {} run(s) had no aiding epoch counted in the RMS: no RMS for them (—); \
+                 run longer or aid more often\n",
+                o.label,
+                o.runs.len()
+            );
+        }
+    }
 }
 
 /// Which of the runs' seeds the scenario's parameters were chosen on.
@@ -230,6 +255,7 @@ pub fn write_summary_csv(path: &Path, input: &ReportInput<'_>) -> Result<(), Err
         "runs_ok",
         "runs_failed",
         "paper",
+        "runs_with_epochs",
     ])
     .map_err(io)?;
     let axes = input.axes();
@@ -252,9 +278,10 @@ pub fn write_summary_csv(path: &Path, input: &ReportInput<'_>) -> Result<(), Err
                 known(stats.mean),
                 known(stats.std),
                 known(stats.median),
-                stats.count.to_string(),
-                (o.runs.len() - stats.count).to_string(),
+                o.completed().count().to_string(),
+                o.failures().count().to_string(),
                 paper,
+                stats.count.to_string(),
             ])
             .map_err(io)?;
         }
@@ -300,7 +327,14 @@ pub fn write_runs_csv(path: &Path, input: &ReportInput<'_>) -> Result<(), Error>
             match outcome {
                 Ok((summary, _)) => {
                     row.extend(["ok".to_string(), String::new()]);
-                    row.extend(Metric::ALL.iter().map(|m| m.value(summary).to_string()));
+                    // No aiding epoch: no RMS, an empty cell (never 0).
+                    row.extend(Metric::ALL.iter().map(|m| {
+                        if summary.rms_epochs > 0 {
+                            m.value(summary).to_string()
+                        } else {
+                            String::new()
+                        }
+                    }));
                 }
                 Err(e) => {
                     row.extend(["failed".to_string(), e.to_string()]);

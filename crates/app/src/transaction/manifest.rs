@@ -163,7 +163,7 @@ pub fn format_of(name: &str) -> (&'static str, u32) {
         }
         ("report.txt", _) => ("kestrel-report", 1),
         (_, "toml") => ("kestrel-process-config", 1),
-        (_, "csv") => ("kestrel-csv", 1),
+        (_, "csv") => ("kestrel-csv", 2),
         (_, "png") => ("png", 1),
         (_, "svg") => ("svg", 1),
         _ => ("other", 1),

@@ -148,6 +148,15 @@ impl Held {
             rest: imu[half..].to_vec(),
         };
         held.wait_for(out, ".kestrel.lock");
+        // The lock comes first, the scratch folder right after it.
+        let t = Instant::now();
+        while scratch_in(out).is_empty() {
+            assert!(
+                t.elapsed() < Duration::from_secs(60),
+                "no scratch folder after 60 s"
+            );
+            std::thread::sleep(Duration::from_millis(20));
+        }
         held
     }
 

@@ -68,7 +68,7 @@ fn reproduce_writes_tables_csv_and_figures() {
     let mut lines = summary.lines();
     assert_eq!(
         lines.next(),
-        Some("scenario,filter,metric,mean,std,median,runs_ok,runs_failed,paper")
+        Some("scenario,filter,metric,mean,std,median,runs_ok,runs_failed,paper,runs_with_epochs")
     );
     assert_eq!(lines.clone().count(), 2 * 11);
     assert!(summary.contains("002,KF,pos_east_m,"));
@@ -160,4 +160,39 @@ fn run_takes_a_scenario_file_and_reports_its_errors() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("missing.toml"));
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A run too short for any aiding epoch has no RMS: the tables print —,
+/// never 0.000 ± 0.000 nor a NaN× ratio, and the report says why.
+#[test]
+fn runs_without_an_aiding_epoch_print_no_statistic() {
+    let dir = temp_dir("no-epochs");
+    let out = kestrel(&[
+        "reproduce",
+        "002",
+        "--runs",
+        "2",
+        "--duration",
+        "0.5",
+        "--study-runs",
+        "0",
+        "--no-plots",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(!text.contains("0.000 ± 0.000"), "{text}");
+    assert!(!text.contains("NaN"), "{text}");
+    assert!(
+        text.contains("KF: 2 of 2 run(s) had no aiding epoch counted in the RMS"),
+        "{text}"
+    );
+    let runs = std::fs::read_to_string(dir.join("002/runs.csv")).unwrap();
+    let row = runs.lines().nth(1).unwrap();
+    assert!(row.ends_with(",ok,,,,,,,,,,,,"), "{row}");
 }
