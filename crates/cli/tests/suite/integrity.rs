@@ -556,6 +556,32 @@ fn pipes_and_fifos_are_read_once() {
         fs::read(dir.join("fifo/result.nav")).unwrap(),
         fs::read(dir.join("file/result.nav")).unwrap()
     );
+    // The truth from a FIFO with --smooth: read once, kept for the smoother.
+    let truth = dir.join("truth.fifo");
+    mkfifo(&truth);
+    let child = kestrel()
+        .args(process_args(
+            &dir,
+            &dir.join("imu.txt"),
+            &dir.join("smoothed"),
+            &["--smooth", "--truth", &s(&truth)],
+        ))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let nav = fs::read(dir.join("truth.nav")).unwrap();
+    let w = std::thread::spawn(move || {
+        let mut f = OpenOptions::new().write(true).open(&truth).unwrap();
+        let _ = f.write_all(&nav);
+    });
+    let smoothed = ended(child);
+    w.join().unwrap();
+    assert!(smoothed.status.success(), "{}", text(&smoothed.stderr));
+    let listed = listing(&dir.join("smoothed"));
+    for f in ["errors.csv", "errors_smoothed.csv", "smoothed.nav"] {
+        assert!(listed.contains(&f.to_string()), "{f}: {listed:?}");
+    }
     // /dev/zero and /dev/urandom as inputs end in an error, bounded.
     for (flag, dev) in [
         ("--imu", "/dev/zero"),
