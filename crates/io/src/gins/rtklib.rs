@@ -309,7 +309,9 @@ impl<R: BufRead> RtklibReader<R> {
             return Ok(gps - w0);
         }
         match (a.parse::<u32>(), b.parse::<f64>()) {
-            (Ok(week), Ok(tow)) if (0.0..WEEK_SECONDS).contains(&tow) => {
+            (Ok(week), Ok(tow))
+                if week <= super::physical::GPS_WEEK_MAX && (0.0..WEEK_SECONDS).contains(&tow) =>
+            {
                 Ok(f64::from(week) * WEEK_SECONDS + tow - w0)
             }
             _ => Err(self.at(
@@ -360,7 +362,14 @@ impl<R: BufRead> Iterator for RtklibReader<R> {
 /// `YYYY/MM/DD`.
 fn date(s: &str) -> Option<(i64, u32, u32)> {
     let mut it = s.split('/');
-    let y = it.next()?.parse().ok()?;
+    // GPS time starts in 1980; the last full week kestrel accepts
+    // ([`GPS_WEEK_MAX`](super::physical::GPS_WEEK_MAX)) is in 2171. A wider
+    // year overflows the day count.
+    let y = it
+        .next()?
+        .parse()
+        .ok()
+        .filter(|y| (1980..=2171).contains(y))?;
     let m = it.next()?.parse().ok().filter(|m| (1..=12).contains(m))?;
     let d = it.next()?.parse().ok().filter(|d| (1..=31).contains(d))?;
     it.next().is_none().then_some((y, m, d))
@@ -395,6 +404,15 @@ fn days_from_civil(y: i64, m: u32, d: u32) -> i64 {
 mod tests {
     use super::super::imu_format::GPS_EPOCH_UNIX;
     use super::*;
+
+    /// Found by fuzzing: a year of 18 digits overflowed the day count.
+    #[test]
+    fn dates_outside_gps_time_are_refused() {
+        assert_eq!(date("400053333333333330/01/02"), None);
+        assert_eq!(date("1979/12/31"), None);
+        assert_eq!(date("2172/01/01"), None);
+        assert_eq!(date("2024/02/29"), Some((2024, 2, 29)));
+    }
 
     #[test]
     fn civil_dates_count_days_from_the_unix_epoch() {
