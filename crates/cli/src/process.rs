@@ -58,6 +58,12 @@ pub struct ProcessArgs {
     /// --truth, errors_smoothed.csv; the plots show both solutions.
     #[arg(long)]
     pub smooth: bool,
+    /// Stop with an error (non-zero status) at the health monitor's first
+    /// alarm: the NIS of a measurement kind (or, with --truth, the
+    /// position NEES) beyond its χ² bound for 3 windows of 20 updates in a
+    /// row. Without it an alarm is a warning in the summary.
+    #[arg(long)]
+    pub stop_on_divergence: bool,
 }
 
 /// Runs `kestrel process` and prints its summary.
@@ -103,6 +109,7 @@ pub fn process(args: &ProcessArgs) -> Result<ProcessReport, CliError> {
             .flat_map(|stem| [format!("{stem}.png"), format!("{stem}.svg")])
             .collect(),
         smooth: args.smooth,
+        stop_on_divergence: args.stop_on_divergence,
     };
     let mut bar = crate::progress::Bar::time();
     let run = kestrel_app::process::process(&inputs, &mut bar)?;

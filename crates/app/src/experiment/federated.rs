@@ -247,6 +247,8 @@ where
         self.feed_back(at)?;
         Ok(Adaptation {
             nis: to_f64(d0.report.nis + d1.report.nis),
+            adapted_nis: to_f64(d0.report.adapted_nis + d1.report.adapted_nis),
+            rows: 6,
             rejected: d0.report.rejected && d1.report.rejected,
             noise_trace: to_f64(d0.noise.trace() + d1.noise.trace()),
             ..Adaptation::default()

@@ -20,8 +20,16 @@ use kestrel::nav::{Ellipsoid, NavError, NavState};
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Adaptation {
-    /// NIS of the raw innovation against the nominal covariance.
+    /// NIS of the raw innovation against the nominal covariance (the
+    /// filter's model before its noise adapters changed `R`).
     pub nis: f64,
+    /// NIS of the innovation the gain used against the covariance it used
+    /// (after compression, inflation or a new `R`): what the filter itself
+    /// claims about the innovation. Equal to [`nis`](Self::nis) without
+    /// adapters.
+    pub adapted_nis: f64,
+    /// The measurement's size `m` (the degrees of freedom of both NIS).
+    pub rows: usize,
     /// Whether the update was rejected (the prior kept).
     pub rejected: bool,
     /// The fading factor λ applied to the propagated covariance.
@@ -43,6 +51,8 @@ impl Default for Adaptation {
     fn default() -> Self {
         Self {
             nis: 0.0,
+            adapted_nis: 0.0,
+            rows: 0,
             rejected: false,
             fade: 1.0,
             inflation: 1.0,
@@ -73,6 +83,8 @@ impl Adaptation {
         let r = &d.report;
         let mut a = Self {
             nis: r.nis,
+            adapted_nis: r.adapted_nis,
+            rows: M,
             rejected: r.rejected,
             fade: r.fade,
             noise_trace: d.noise.trace(),
@@ -161,6 +173,21 @@ impl EpochRecord {
                 .map(|c| self.position.dot(&c.solve(&self.position)))
                 .filter(|v| v.is_finite());
         }
+        self
+    }
+
+    /// The record with its [`position_nees`](Self::position_nees) set to
+    /// `nees`.
+    ///
+    /// ```
+    /// use kestrel_app::experiment::{Adaptation, EpochRecord};
+    /// use kestrel::nav::nalgebra::Vector3;
+    /// let r = EpochRecord { time: 1.0, position: Vector3::zeros(), velocity: Vector3::zeros(),
+    ///     attitude: Vector3::zeros(), adaptation: Adaptation::default(), position_nees: None };
+    /// assert_eq!(r.with_nees(Some(2.5)).position_nees, Some(2.5));
+    /// ```
+    pub fn with_nees(mut self, nees: Option<f64>) -> Self {
+        self.position_nees = nees;
         self
     }
 

@@ -8,10 +8,11 @@ use super::aiding::Aiding;
 use super::data::{Digest, SensorSample, Simulation};
 use super::dispatch::dispatch;
 use super::error::RunError;
+use super::health::Health;
 use super::options::{PositionAxes, RunOptions};
 use super::record::{Adaptation, EpochRecord};
 use super::summary::{Accumulator, RunSummary};
-use crate::scenario::{FilterKind, Scenario};
+use crate::scenario::{FilterKind, MeasurementKind, Scenario};
 use kestrel::nav::engine::{ErrorSystem, LooselyCoupled};
 use kestrel::nav::measurement::GnssAntenna;
 use kestrel::nav::mechanisation::Strapdown;
@@ -143,7 +144,7 @@ pub fn run_together<C: FnMut(usize, &EpochRecord)>(
             let job = Job::new(kind.label(), scenario, &sim, options);
             match dispatch(job, kind).and_then(|mut feed| feed.start().map(|()| feed)) {
                 Ok(feed) => Lane::Running(feed),
-                Err(e) => Lane::Ended(Err(e)),
+                Err(e) => Lane::Ended(Box::new(Err(e))),
             }
         })
         .collect();
@@ -154,7 +155,7 @@ pub fn run_together<C: FnMut(usize, &EpochRecord)>(
             match feed.feed(&sample) {
                 Ok(Some(record)) => on_epoch(i, &record),
                 Ok(None) => {}
-                Err(e) => *lane = Lane::Ended(Err(e)),
+                Err(e) => *lane = Lane::Ended(Box::new(Err(e))),
             }
             running |= matches!(lane, Lane::Running(_));
         }
@@ -166,7 +167,7 @@ pub fn run_together<C: FnMut(usize, &EpochRecord)>(
         .into_iter()
         .map(|lane| match lane {
             Lane::Running(feed) => Ok(feed.summary()),
-            Lane::Ended(result) => result,
+            Lane::Ended(result) => *result,
         })
         .collect())
 }
@@ -175,7 +176,7 @@ pub fn run_together<C: FnMut(usize, &EpochRecord)>(
 /// failure, or before the first sample).
 enum Lane<'a> {
     Running(Box<dyn Feed + 'a>),
-    Ended(Result<RunSummary, RunError>),
+    Ended(Box<Result<RunSummary, RunError>>),
 }
 
 /// Feeds every sample of `sim` to `feed`, handing its aiding epochs to
@@ -311,6 +312,8 @@ impl<'a> Job<'a> {
         Box::new(Driver {
             label: self.label,
             scenario: self.scenario,
+            measurement: measurement_name(self.scenario.filter.measurement),
+            health: Health::new(),
             acc: self.accumulator(),
             digest: Digest::default(),
             end: self.start.time,
@@ -332,10 +335,21 @@ impl<'a> Job<'a> {
     }
 }
 
+/// The name of a measurement kind in health events.
+fn measurement_name(kind: MeasurementKind) -> &'static str {
+    match kind {
+        MeasurementKind::GnssPositionVelocity => "GNSS",
+        MeasurementKind::AttitudeVelocityPosition => "attitude + GNSS",
+        MeasurementKind::OdometerVelocity => "odometer",
+    }
+}
+
 /// [`Job::driver`]'s run.
 struct Driver<'a, P> {
     label: &'static str,
     scenario: &'a Scenario,
+    measurement: &'static str,
+    health: Health,
     acc: Accumulator,
     digest: Digest,
     end: f64,
@@ -358,12 +372,17 @@ where
             .transpose()?;
         if let Some(record) = &record {
             self.acc.add(record);
+            self.health
+                .update(record.time, self.measurement, &record.adaptation);
+            self.health.nees(record.time, record.position_nees);
         }
         Ok(record)
     }
 
     fn summary(&self) -> RunSummary {
-        self.acc.finish(self.label, self.end, self.digest.value())
+        let mut s = self.acc.finish(self.label, self.end, self.digest.value());
+        s.health = self.health.summary();
+        s
     }
 }
 

@@ -2,6 +2,7 @@
 
 use kestrel::nalgebra::Vector3;
 
+use super::health::HealthSummary;
 use super::options::PositionAxes;
 use super::record::EpochRecord;
 
@@ -42,6 +43,8 @@ pub struct RunSummary {
     /// Fingerprint of the sensor data the filter consumed (equal for runs
     /// on identical data).
     pub data_digest: u64,
+    /// What the health monitor found ([`Health`](super::Health)).
+    pub health: HealthSummary,
 }
 
 impl RunSummary {
@@ -132,6 +135,7 @@ impl Accumulator {
             final_position: self.last,
             end_time,
             data_digest: digest,
+            health: HealthSummary::default(),
         }
     }
 }

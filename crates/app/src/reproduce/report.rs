@@ -79,7 +79,51 @@ pub fn text_report(input: &ReportInput<'_>) -> String {
         window_table(&mut out, input, paper);
     }
     failures(&mut out, input.outcomes, plan);
+    health(&mut out, input.outcomes, plan);
     out
+}
+
+/// The health monitor's findings per filter: runs with an alarm, runs
+/// diverged (an alarm still raised at the end), and the first of each.
+fn health(out: &mut String, outcomes: &[FilterOutcome], plan: &MonteCarloPlan) {
+    let mut t = TextTable::new(
+        [
+            "health monitor",
+            "runs with an alarm",
+            "first alarm (run: time, statistic)",
+            "runs diverged",
+        ]
+        .map(String::from)
+        .to_vec(),
+    );
+    for o in outcomes {
+        let done: Vec<(usize, &crate::experiment::RunSummary)> = o
+            .runs
+            .iter()
+            .enumerate()
+            .filter_map(|(i, r)| r.as_ref().ok().map(|(s, _)| (i, s)))
+            .collect();
+        let alarmed = done.iter().filter(|(_, s)| s.health.alarms > 0).count();
+        let diverged = done.iter().filter(|(_, s)| s.health.diverged()).count();
+        let first = done
+            .iter()
+            .find_map(|(i, s)| s.health.first_alarm.map(|e| (*i, e)))
+            .map_or("—".to_string(), |(i, e)| {
+                let seed = plan.seed.wrapping_add(i as u64);
+                format!("run {i} (seed {seed}): {} s, {}", e.time, e.check)
+            });
+        t.row(vec![
+            o.label.clone(),
+            format!("{alarmed} of {}", done.len()),
+            first,
+            format!("{diverged} of {}", done.len()),
+        ]);
+    }
+    let _ = writeln!(out, "{t}");
+    let _ = writeln!(
+        out,
+        "   alarm: the GNSS/odometer NIS (or the position NEES) beyond its χ² bound for 3 windows of 20 updates in a row; diverged: an alarm still raised at the end of the run (the NEES's, the truth being known)\n"
+    );
 }
 
 /// Which of the runs' seeds the scenario's parameters were chosen on.
@@ -274,8 +318,10 @@ fn known(v: f64) -> String {
 /// Writes the per-run CSV: one row per filter and run.
 ///
 /// Columns: `scenario, filter, run, seed, status` (`ok` or `failed`),
-/// `failure` (why, empty when ok), then every [`Metric`] of the run (empty
-/// when it failed).
+/// `failure` (why, empty when ok), then every [`Metric`] of the run, then
+/// the health monitor's `health_alarms` (alarms raised), `first_alarm_s`
+/// (empty without one) and `diverged` (1: an alarm still raised at the
+/// end) — all empty when the run failed.
 ///
 /// # Errors
 /// [`Error::Io`] if the file cannot be written.
@@ -287,6 +333,11 @@ pub fn write_runs_csv(path: &Path, input: &ReportInput<'_>) -> Result<(), Error>
         .map(String::from)
         .to_vec();
     header.extend(Metric::ALL.iter().map(|m| m.name(axes)));
+    header.extend(
+        ["health_alarms", "first_alarm_s", "diverged"]
+            .iter()
+            .map(|s| s.to_string()),
+    );
     w.write_record(&header).map_err(io)?;
     for o in input.outcomes {
         for (run, outcome) in o.runs.iter().enumerate() {
@@ -301,10 +352,15 @@ pub fn write_runs_csv(path: &Path, input: &ReportInput<'_>) -> Result<(), Error>
                 Ok((summary, _)) => {
                     row.extend(["ok".to_string(), String::new()]);
                     row.extend(Metric::ALL.iter().map(|m| m.value(summary).to_string()));
+                    let h = &summary.health;
+                    row.push(h.alarms.to_string());
+                    row.push(h.first_alarm.map_or(String::new(), |e| e.time.to_string()));
+                    row.push(u8::from(h.diverged()).to_string());
                 }
                 Err(e) => {
                     row.extend(["failed".to_string(), e.to_string()]);
                     row.extend(Metric::ALL.iter().map(|_| String::new()));
+                    row.extend([String::new(), String::new(), String::new()]);
                 }
             }
             w.write_record(&row).map_err(io)?;

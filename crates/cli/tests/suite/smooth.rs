@@ -25,6 +25,7 @@ fn drive(name: &str) -> std::path::PathBuf {
 fn args(dir: &Path) -> ProcessArgs {
     ProcessArgs {
         smooth: true,
+        stop_on_divergence: false,
         ..run_args(dir, "process.toml", "r", &OUTAGES)
     }
 }
@@ -166,6 +167,7 @@ fn figures_without_a_truth() {
         outages: Vec::new(),
         no_plots: false,
         smooth: true,
+        stop_on_divergence: false,
     })
     .unwrap();
     for stem in ["track", "imu_errors", "std"] {

@@ -51,6 +51,7 @@ pub fn run_args(dir: &Path, config: &str, out: &str, outages: &[&str]) -> Proces
         outages: outages.iter().map(|w| w.parse().unwrap()).collect(),
         no_plots: true,
         smooth: false,
+        stop_on_divergence: false,
     }
 }
 
