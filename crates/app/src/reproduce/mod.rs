@@ -20,7 +20,7 @@ use crate::experiment::PositionAxes;
 use crate::scenario::{tuned, FilterKind, MeasurementKind, Scenario};
 
 pub use consistency::{
-    nees_rows, nees_table, NeesRow, CONSERVATIVE_BELOW, OVERCONFIDENT_ABOVE, SETTLING_SHARE,
+    anees_band, nees_rows, nees_table, Anees, NeesRow, Reading, CONSISTENT_SHARE, SETTLING_SHARE,
 };
 pub use federated::{federated_section, largest_difference, precision_section};
 pub use metric::Metric;
@@ -45,8 +45,8 @@ pub const MAX_RUNS: usize = 10_000;
 pub const MAX_STUDY_RUNS: usize = 1_000;
 
 /// Seeds of the fault-free consistency runs (at most; fewer with fewer
-/// runs).
-pub const CONSISTENCY_RUNS: usize = 5;
+/// runs): the Monte Carlo the ANEES averages over.
+pub const CONSISTENCY_RUNS: usize = 20;
 
 /// The most worker threads a reproduction accepts.
 pub const MAX_THREADS: usize = 256;

@@ -74,7 +74,8 @@ fn reproduce_writes_tables_csv_and_figures() {
     assert!(summary.contains("002,KF,pos_east_m,"));
     assert!(summary.contains(",2,0,2.245"));
     // The consistency check, the study and the verdict are in the report.
-    assert!(stdout.contains("position NEES mean"), "{stdout}");
+    assert!(stdout.contains("position ANEES"), "{stdout}");
+    assert!(stdout.contains("health monitor"), "{stdout}");
     assert!(stdout.contains("sensitivity:"), "{stdout}");
     assert!(
         stdout.contains("verdict (of the full-length runs and study): "),
