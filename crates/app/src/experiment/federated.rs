@@ -206,7 +206,7 @@ where
         };
         let adaptation = self.update(at, &fix)?;
         // The fused covariance is not a single filter's: no NEES.
-        Ok(Some((*self.ins.state(), adaptation, None)))
+        Ok(Some((*self.ins.state(), adaptation, None, None)))
     }
 
     /// Propagates every local over the interval collected, with the model

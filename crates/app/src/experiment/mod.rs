@@ -77,4 +77,4 @@ pub use precision::{
 };
 pub use record::{Adaptation, Describe, EpochRecord};
 pub use run::{run, run_together, run_with, RunResult};
-pub use summary::RunSummary;
+pub use summary::{RunSummary, ScaleEstimate};

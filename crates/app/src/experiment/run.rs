@@ -11,6 +11,7 @@ use super::error::RunError;
 use super::health::Health;
 use super::options::{PositionAxes, RunOptions};
 use super::record::{Adaptation, EpochRecord};
+use super::summary::ScaleEstimate;
 use super::summary::{Accumulator, RunSummary};
 use crate::scenario::{FilterKind, MeasurementKind, Scenario};
 use kestrel::nav::engine::{ErrorSystem, LooselyCoupled};
@@ -214,12 +215,14 @@ pub(crate) trait Feed {
 }
 
 /// What a runner's step returns at an aiding epoch: the navigation
-/// solution, what the update did and the filter's position-error
-/// covariance (NED, m², `None` if the runner has no single one).
+/// solution, what the update did, the filter's position-error covariance
+/// (NED, m², `None` if the runner has no single one) and its odometer
+/// scale-factor estimate and σ (`None` without a scale state).
 pub(crate) type Solved = (
     NavState,
     Adaptation,
     Option<kestrel::nalgebra::Matrix3<f64>>,
+    Option<(f64, f64)>,
 );
 
 /// Everything a run needs besides the filter and its data.
@@ -288,7 +291,14 @@ impl<'a> Job<'a> {
             Ok(adaptation.map(|a| {
                 // δr is states 6–8 of every error model here.
                 let p = engine.covariance().fixed_view::<3, 3>(6, 6).into_owned();
-                (*engine.solution(), a, Some(p))
+                let scale =
+                    <S as kestrel::nav::measurement::ErrorLayout<N>>::ODOMETER_SCALE.map(|i| {
+                        (
+                            engine.corrections().odometer_scale,
+                            engine.covariance()[(i, i)].max(0.0).sqrt(),
+                        )
+                    });
+                (*engine.solution(), a, Some(p), scale)
             }))
         }))
     }
@@ -314,6 +324,7 @@ impl<'a> Job<'a> {
             scenario: self.scenario,
             measurement: measurement_name(self.scenario.filter.measurement),
             health: Health::new(),
+            scale: None,
             acc: self.accumulator(),
             digest: Digest::default(),
             end: self.start.time,
@@ -350,6 +361,7 @@ struct Driver<'a, P> {
     scenario: &'a Scenario,
     measurement: &'static str,
     health: Health,
+    scale: Option<ScaleEstimate>,
     acc: Accumulator,
     digest: Digest,
     end: f64,
@@ -365,7 +377,14 @@ where
         self.end = sample.truth.time;
         let (label, earth) = (self.label, &self.scenario.earth);
         let record = (self.step)(sample)?
-            .map(|(nav, adaptation, position_covariance)| {
+            .map(|(nav, adaptation, position_covariance, scale)| {
+                if let (Some((estimate, sigma)), Some(truth)) = (scale, sample.odometer_scale) {
+                    self.scale = Some(ScaleEstimate {
+                        estimate,
+                        sigma,
+                        truth,
+                    });
+                }
                 EpochRecord::measure(earth, &nav, &sample.truth, adaptation, label)
                     .map(|r| r.with_position_covariance(position_covariance.as_ref()))
             })
@@ -382,6 +401,7 @@ where
     fn summary(&self) -> RunSummary {
         let mut s = self.acc.finish(self.label, self.end, self.digest.value());
         s.health = self.health.summary();
+        s.odometer_scale = self.scale;
         s
     }
 }

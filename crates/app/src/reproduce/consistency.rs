@@ -30,7 +30,7 @@
 
 use std::fmt::Write as _;
 
-use crate::experiment::{run_together, RunOptions};
+use crate::experiment::{run_together, RunOptions, ScaleEstimate};
 use crate::scenario::{fault_free, Scenario};
 use rayon::prelude::*;
 
@@ -208,6 +208,9 @@ pub struct NeesRow {
     pub diverged: usize,
     /// Runs completed.
     pub completed: usize,
+    /// The odometer scale-factor estimate at the end of each completed run
+    /// (16-state filters).
+    pub scales: Vec<ScaleEstimate>,
 }
 
 impl NeesRow {
@@ -226,6 +229,7 @@ struct RunNees {
     times: Vec<f64>,
     alarm: bool,
     diverged: bool,
+    scale: Option<ScaleEstimate>,
 }
 
 /// Runs every filter of each `(label suffix, scenario)` configuration on
@@ -276,6 +280,7 @@ pub fn nees_rows(
                             let summary = d.as_ref().ok()?;
                             x.alarm = summary.health.alarms > 0;
                             x.diverged = summary.health.diverged();
+                            x.scale = summary.odometer_scale;
                             Some(x)
                         })
                         .collect(),
@@ -306,6 +311,7 @@ pub fn nees_rows(
                 alarms: done.iter().filter(|r| r.alarm).count(),
                 diverged: done.iter().filter(|r| r.diverged).count(),
                 completed: done.len(),
+                scales: done.iter().filter_map(|r| r.scale).collect(),
             });
         }
     }
@@ -365,5 +371,13 @@ pub fn nees_table(rows: &[NeesRow], seeds: core::ops::Range<u64>) -> String {
         "   reading: consistent when the ANEES is inside its band at ≥ {:.0} % of the epochs, else over-confident (more above) or conservative (more below); health alarms on fault-free data are false alarms\n",
         CONSISTENT_SHARE * 100.0
     );
+    let scales: Vec<(String, Vec<ScaleEstimate>)> = rows
+        .iter()
+        .map(|r| (r.label.clone(), r.scales.clone()))
+        .collect();
+    out.push_str(&super::report::scale_table(
+        "odometer scale factor at the end of the fault-free runs",
+        &scales,
+    ));
     out
 }

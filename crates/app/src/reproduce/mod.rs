@@ -26,7 +26,7 @@ pub use federated::{federated_section, largest_difference, precision_section};
 pub use metric::Metric;
 pub use monte_carlo::{run_monte_carlo, FilterOutcome, MonteCarloPlan, RunOutcome};
 pub use paper::{paper, Paper, PaperRow, PaperTable, PAPERS};
-pub use report::{text_report, write_runs_csv, write_summary_csv, ReportInput};
+pub use report::{scale_table, text_report, write_runs_csv, write_summary_csv, ReportInput};
 pub use sensitivity::{
     run_study, study_table, write_study_csv, StudyPlan, StudyRow, STUDY_METRICS,
 };
