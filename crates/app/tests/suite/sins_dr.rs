@@ -83,6 +83,9 @@ fn the_scale_factor_is_unbiased_and_its_sigma_honest_on_forty_held_out_seeds() {
         "scale factor over {n} seeds: bias {bias:.2e} (standard error {se:.2e}), spread {spread:.2e}, \
          mean σ {sigma:.2e}, mean z² {z2:.2}"
     );
-    assert!(bias.abs() <= 3.0 * se, "bias {bias:.2e}, standard error {se:.2e}");
+    assert!(
+        bias.abs() <= 3.0 * se,
+        "bias {bias:.2e}, standard error {se:.2e}"
+    );
     assert!((0.516..=1.670).contains(&z2), "mean z² {z2:.2}");
 }
