@@ -1,8 +1,8 @@
 //! Per-epoch output of a run: navigation errors and what the adapters did.
 
 use kestrel::adaptive::{
-    CompositionReport, CompressionReport, DivergenceReport, FuzzyGainReport, HuberReport,
-    StrongTrackingReport, WindowedNoiseReport,
+    CompositionReport, CompressionReport, DivergenceReport, FuzzyGainReport, GateReport,
+    HuberReport, StrongTrackingReport, WindowedNoiseReport,
 };
 use kestrel::nalgebra::Vector3;
 use kestrel::UpdateDetail;
@@ -261,6 +261,11 @@ impl<const M: usize> Describe for HuberReport<f64, M> {
             a.inflation = 1.0 / smallest;
         }
     }
+}
+
+// The rejection itself is in the update report.
+impl Describe for GateReport<f64> {
+    fn describe(&self, _: &mut Adaptation) {}
 }
 
 impl Describe for ThresholdReport<f64> {

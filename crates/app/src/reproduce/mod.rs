@@ -12,6 +12,7 @@ mod report;
 mod sensitivity;
 mod stats;
 mod table;
+mod verdict;
 mod window;
 
 use std::path::{Path, PathBuf};
@@ -32,6 +33,9 @@ pub use sensitivity::{
 };
 pub use stats::{quantile, MeanStd, Quartiles};
 pub use table::TextTable;
+pub use verdict::{
+    decide, from_headline, from_study, Basis, Comparison, Evidence, Outcome, Verdict,
+};
 pub use window::{Window, WindowError, WindowProbe};
 
 use crate::output::write_epochs_csv;
@@ -179,6 +183,8 @@ pub fn reproduce_scenario(
         for note in p.notes {
             text.push_str(&format!("note: {note}\n"));
         }
+        // The disclosures are reviewed text: their numbers come from the
+        // runs named in them, not from this run's tables.
         for note in p.disclosures {
             text.push_str(&format!("disclosure: {note}\n"));
         }

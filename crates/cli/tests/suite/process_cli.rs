@@ -244,7 +244,7 @@ fn configuration_errors_name_the_line_column_or_key() {
         ("kind = ", "kind = \"fading\"\nrho = 1.5\n#", "filter.rho", "expected 0 ≤ ρ ≤ 1, found 1.5"),
         ("kind = ", "kind = \"sage-husa-fading\"\nlambda_max = 0.5\n#", "filter.lambda_max", "expected at least 1, found 0.5"),
         ("kind = ", "kind = \"ekf\"\nrho = 0.5\n#", "filter.rho", "does not apply to kind = \"ekf\", which takes no parameters"),
-        ("kind = ", "kind = \"kalman\"\n#", "filter.kind", "unknown value `kalman`, expected one of `ekf`, `sage-husa-fading`, `improved-adaptive`, `federated-ukf`, `federated-sr-ukf`, `ict-erekf`, `max-threshold`, `fuzzy-adaptive`, `strong-tracking-fading`"),
+        ("kind = ", "kind = \"kalman\"\n#", "filter.kind", "unknown value `kalman`, expected one of `ekf`, `sage-husa-fading`, `improved-adaptive`, `federated-ukf`, `federated-sr-ukf`, `ict-erekf`, `chi-square-gate`, `max-threshold`, `fuzzy-adaptive`, `strong-tracking-fading`"),
         ("position = [", "position = [91.0, 0.0, 0.0]\n#", "initial.position[0]", "expected a latitude in [-90, 90] deg, found 91"),
         ("position_std = ", "position_std = [1.0, 0.0, 1.0]\n#", "gnss.position_std[1]", "expected a standard deviation > 0 whose square in SI units is a normal double (neither 0 nor infinite), found 0"),
         ("gyro_markov_tau = ", "gyro_markov_tau = -5.0\n#", "imu.gyro_markov_tau", "expected a time > 0 s (or inf), found -5"),

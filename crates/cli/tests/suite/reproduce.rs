@@ -82,8 +82,8 @@ fn reproduce_writes_tables_csv_and_figures() {
         "{stdout}"
     );
     let study = std::fs::read_to_string(dir.join("sensitivity.csv")).unwrap();
-    // Two variants × three metrics, two seeds each.
-    assert_eq!(study.lines().count(), 1 + 2 * 3, "{study}");
+    // Three variants × three metrics, two seeds each.
+    assert_eq!(study.lines().count(), 1 + 3 * 3, "{study}");
     assert!(
         study.lines().skip(1).all(|l| l.contains(",2,2,0,0")),
         "{study}"
