@@ -18,7 +18,7 @@ mod window;
 use std::path::{Path, PathBuf};
 
 use crate::experiment::PositionAxes;
-use crate::scenario::{tuned, FilterKind, MeasurementKind, Scenario};
+use crate::scenario::{tuned, variants, FilterKind, MeasurementKind, Scenario, STUDY_SEEDS_FROM};
 
 pub use consistency::{
     anees_band, nees_rows, nees_table, Anees, NeesRow, Reading, CONSISTENT_SHARE, SETTLING_SHARE,
@@ -188,10 +188,7 @@ pub fn reproduce_scenario(
         for note in p.disclosures {
             text.push_str(&format!("disclosure: {note}\n"));
         }
-        text.push_str(&format!(
-            "verdict (of the full-length runs and study): {}\n",
-            p.verdict
-        ));
+        text.push_str(&verdict_text(scenario, p, &plan, &outcomes, &study));
     }
     Ok(Reproduction {
         scenario: scenario.clone(),
@@ -201,6 +198,50 @@ pub fn reproduce_scenario(
         study,
         text,
     })
+}
+
+/// The computed verdict of `paper` (from the study, or from the headline
+/// runs when it was skipped) and the reviewed reading beside it.
+fn verdict_text(
+    scenario: &Scenario,
+    paper: &Paper,
+    plan: &MonteCarloPlan,
+    outcomes: &[FilterOutcome],
+    study: &[StudyRow],
+) -> String {
+    let computed = if study.is_empty() {
+        // The paper's baseline is the headline variant's first filter.
+        let baseline = variants(&scenario.name)
+            .into_iter()
+            .find(|v| v.headline)
+            .map_or(scenario.filters[0], |v| v.scenario.filters[0]);
+        let n = scenario.filters.len();
+        let skip = scenario
+            .filters
+            .iter()
+            .position(|k| *k == baseline)
+            .unwrap_or(0);
+        let seeds = plan.seed..plan.seed.saturating_add(plan.runs as u64);
+        let why = if variants(&scenario.name).is_empty() {
+            "this paper has no study variants"
+        } else {
+            "the study was skipped"
+        };
+        from_headline(&outcomes[skip..], n - skip, seeds, why)
+    } else {
+        from_study(study, STUDY_SEEDS_FROM)
+    };
+    match computed {
+        Some(v) => format!(
+            "{}reading (as reviewed on the full-length runs and study seeds 2000–2009, not recomputed): {}\n",
+            v.text(),
+            paper.verdict
+        ),
+        None => format!(
+            "verdict (not computed: no comparison over seeds): {}\n",
+            paper.verdict
+        ),
+    }
 }
 
 impl Reproduction {

@@ -123,8 +123,14 @@ pub enum Basis {
         /// Seeds per variant.
         runs: usize,
     },
-    /// The headline runs only (the study skipped): their seeds.
-    Headline(Range<u64>),
+    /// The headline runs only: their seeds, and why (the study skipped, or
+    /// none for this paper).
+    Headline {
+        /// The headline runs' seeds.
+        seeds: Range<u64>,
+        /// Why there is no study, e.g. `"the study was skipped"`.
+        why: &'static str,
+    },
 }
 
 /// A computed verdict.
@@ -211,6 +217,7 @@ pub fn from_headline(
     outcomes: &[FilterOutcome],
     paper_filters: usize,
     seeds: Range<u64>,
+    why: &'static str,
 ) -> Option<Verdict> {
     if paper_filters < 2 || outcomes.len() < paper_filters {
         return None;
@@ -242,7 +249,7 @@ pub fn from_headline(
     }));
     Some(Verdict {
         outcome: decide(&evidence),
-        basis: Basis::Headline(seeds),
+        basis: Basis::Headline { seeds, why },
         evidence,
     })
 }
@@ -256,8 +263,8 @@ impl Verdict {
                 "the sensitivity study, seeds {from}–{}",
                 from + (*runs as u64).saturating_sub(1)
             ),
-            Basis::Headline(seeds) => format!(
-                "the headline runs only, seeds {}–{} (the study was skipped)",
+            Basis::Headline { seeds, why } => format!(
+                "the headline runs only, seeds {}–{} ({why})",
                 seeds.start,
                 seeds.end.saturating_sub(1)
             ),
@@ -347,7 +354,10 @@ mod tests {
     fn the_text_names_its_basis() {
         let v = Verdict {
             outcome: Outcome::PartlyReproduced,
-            basis: Basis::Headline(0..20),
+            basis: Basis::Headline {
+                seeds: 0..20,
+                why: "the study was skipped",
+            },
             evidence: vec![e(true, false, q(1.2, 1.5))],
         };
         let t = v.text();
