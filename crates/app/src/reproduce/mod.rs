@@ -29,7 +29,7 @@ pub use monte_carlo::{run_monte_carlo, FilterOutcome, MonteCarloPlan, RunOutcome
 pub use paper::{paper, Paper, PaperRow, PaperTable, PAPERS};
 pub use report::{scale_table, text_report, write_runs_csv, write_summary_csv, ReportInput};
 pub use sensitivity::{
-    run_study, study_table, write_study_csv, StudyPlan, StudyRow, STUDY_METRICS,
+    run_study, study_disclosure, study_table, write_study_csv, StudyPlan, StudyRow, STUDY_METRICS,
 };
 pub use stats::{quantile, MeanStd, Quartiles};
 pub use table::TextTable;
@@ -187,6 +187,9 @@ pub fn reproduce_scenario(
         // runs named in them, not from this run's tables.
         for note in p.disclosures {
             text.push_str(&format!("disclosure: {note}\n"));
+        }
+        if let Some(d) = study_disclosure(&study) {
+            text.push_str(&format!("disclosure: {d}\n"));
         }
         text.push_str(&verdict_text(scenario, p, &plan, &outcomes, &study));
     }

@@ -221,6 +221,45 @@ pub fn study_table(rows: &[StudyRow]) -> String {
     out
 }
 
+/// The study's disclosure line, computed from its rows: the failed runs,
+/// and each variant where the favoured filter was worse than its baseline
+/// (horizontal RMS) on some seeds, with the count; `None` without rows.
+///
+/// For a robust filter these are the runs where it followed a fault the
+/// baseline did not (002's lock-on onto a burst).
+pub fn study_disclosure(rows: &[StudyRow]) -> Option<String> {
+    let first = rows.first()?;
+    let seeds = format!(
+        "seeds {}–{}",
+        STUDY_SEEDS_FROM,
+        STUDY_SEEDS_FROM + first.seeds as u64 - 1
+    );
+    let failed: usize = rows.iter().map(|r| r.failed.0 + r.failed.1).sum();
+    let runs = rows.len() * 2 * first.seeds;
+    let worse: Vec<String> = rows
+        .iter()
+        .filter(|r| r.worse[0] > 0)
+        .map(|r| {
+            format!(
+                "{} vs {} {} of {}",
+                r.variant, r.baseline, r.worse[0], r.seeds
+            )
+        })
+        .collect();
+    let worse = if worse.is_empty() {
+        format!("in no variant was {} worse on any seed", first.favoured)
+    } else {
+        format!(
+            "{} worse than the baseline (horizontal RMS) in {}",
+            first.favoured,
+            worse.join("; ")
+        )
+    };
+    Some(format!(
+        "study, {seeds} (computed): {failed} of {runs} runs failed; {worse}"
+    ))
+}
+
 /// Writes the study as CSV: one row per paper, variant and metric.
 ///
 /// Columns: `paper, variant, headline, baseline, favoured, metric, q1,
@@ -286,4 +325,38 @@ pub fn write_study_csv(path: &Path, rows: &[StudyRow]) -> Result<(), Error> {
         }
     }
     w.flush().map_err(|e| Error::io(path, e))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(variant: &str, worse: usize, failed: (usize, usize)) -> StudyRow {
+        let q = Quartiles::of(&[1.0, 2.0]);
+        StudyRow {
+            paper: "002".to_string(),
+            variant: variant.to_string(),
+            headline: false,
+            competent: false,
+            baseline: "KF",
+            favoured: "ICT-EREKF",
+            ratios: [q, q, q],
+            worse: [worse, 0, 0],
+            seeds: 20,
+            failed,
+            diverged: (0, 0),
+        }
+    }
+
+    #[test]
+    fn the_disclosure_counts_failed_runs_and_worse_seeds() {
+        assert_eq!(study_disclosure(&[]), None);
+        let d = study_disclosure(&[row("capped", 0, (0, 0)), row("doubled", 2, (1, 0))]).unwrap();
+        assert_eq!(
+            d,
+            "study, seeds 2000–2019 (computed): 1 of 80 runs failed; ICT-EREKF worse than the baseline (horizontal RMS) in doubled vs KF 2 of 20"
+        );
+        let d = study_disclosure(&[row("capped", 0, (0, 0))]).unwrap();
+        assert!(d.ends_with("0 of 40 runs failed; in no variant was ICT-EREKF worse on any seed"));
+    }
 }

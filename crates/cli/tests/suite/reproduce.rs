@@ -86,6 +86,11 @@ fn reproduce_writes_tables_csv_and_figures() {
         stdout.contains("bursts capped (±15, 15, 25 m) vs the paper's baseline KF (2)"),
         "{stdout}"
     );
+    // The study's disclosure is computed: three variants, two filters, two seeds.
+    assert!(
+        stdout.contains("disclosure: study, seeds 2000–2001 (computed): 0 of 12 runs failed; "),
+        "{stdout}"
+    );
     let study = std::fs::read_to_string(dir.join("sensitivity.csv")).unwrap();
     // Three variants × three metrics, two seeds each.
     assert_eq!(study.lines().count(), 1 + 3 * 3, "{study}");
