@@ -256,7 +256,7 @@ pub fn study_disclosure(rows: &[StudyRow]) -> Option<String> {
         )
     };
     Some(format!(
-        "study, {seeds} (computed): {failed} of {runs} runs failed; {worse}"
+        "study, {seeds} (computed): {failed} failed of {runs} runs compared (a run shared by variants counted in each); {worse}"
     ))
 }
 
@@ -354,9 +354,9 @@ mod tests {
         let d = study_disclosure(&[row("capped", 0, (0, 0)), row("doubled", 2, (1, 0))]).unwrap();
         assert_eq!(
             d,
-            "study, seeds 2000–2019 (computed): 1 of 80 runs failed; ICT-EREKF worse than the baseline (horizontal RMS) in doubled vs KF 2 of 20"
+            "study, seeds 2000–2019 (computed): 1 failed of 80 runs compared (a run shared by variants counted in each); ICT-EREKF worse than the baseline (horizontal RMS) in doubled vs KF 2 of 20"
         );
         let d = study_disclosure(&[row("capped", 0, (0, 0))]).unwrap();
-        assert!(d.ends_with("0 of 40 runs failed; in no variant was ICT-EREKF worse on any seed"));
+        assert!(d.ends_with("0 failed of 40 runs compared (a run shared by variants counted in each); in no variant was ICT-EREKF worse on any seed"));
     }
 }

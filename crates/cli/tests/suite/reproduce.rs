@@ -88,7 +88,9 @@ fn reproduce_writes_tables_csv_and_figures() {
     );
     // The study's disclosure is computed: three variants, two filters, two seeds.
     assert!(
-        stdout.contains("disclosure: study, seeds 2000–2001 (computed): 0 of 12 runs failed; "),
+        stdout.contains(
+            "disclosure: study, seeds 2000–2001 (computed): 0 failed of 12 runs compared"
+        ),
         "{stdout}"
     );
     let study = std::fs::read_to_string(dir.join("sensitivity.csv")).unwrap();
