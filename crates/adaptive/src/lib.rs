@@ -54,6 +54,8 @@
 //!   with the default rule base [`odometer_engine`].
 //! - [`WindowedNoise`]: `R` from a window of innovations, projected to be
 //!   positive definite (paper 003, eq. 7–8; [`project_spd`]).
+//! - [`ConsistencyMonitor`]: filter health: the NIS (or, with a truth, the
+//!   NEES) tested window by window, an alarm after three failing windows.
 #![no_std]
 #![deny(missing_docs)]
 
@@ -78,6 +80,8 @@ pub use federated::FederatedFilter;
 
 mod chi_square_gate;
 pub mod fuzzy;
+mod monitor;
+pub use monitor::{ConsistencyMonitor, MonitorEvent, SampleDependence};
 mod fuzzy_gain;
 mod gated_huber;
 mod huber_inflation;

@@ -62,6 +62,12 @@ pub struct ProcessArgs {
     /// --truth, errors_smoothed.csv; the plots show both solutions.
     #[arg(long)]
     pub smooth: bool,
+    /// Stop with an error (non-zero status) at the health monitor's first
+    /// alarm: the NIS of a measurement kind (or, with --truth, the
+    /// position NEES) beyond its χ² bound for 3 windows of 20 updates in a
+    /// row. Without it an alarm is a warning in the summary.
+    #[arg(long)]
+    pub stop_on_divergence: bool,
 }
 
 /// Runs `kestrel process` and prints its summary.
@@ -102,6 +108,7 @@ pub fn process(args: &ProcessArgs, ctx: &Context) -> Result<ProcessReport, CliEr
         out: args.out.clone(),
         outages: args.outages.clone(),
         smooth: args.smooth,
+        stop_on_divergence: args.stop_on_divergence,
     };
     let mut tx = kestrel_app::process::begin(&inputs, args.force, &ctx.command)?;
     let mut bar = crate::progress::Bar::time();

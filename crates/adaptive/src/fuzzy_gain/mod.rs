@@ -117,7 +117,7 @@ pub struct FuzzyGain<
     const M: usize,
     const S: usize = 5,
     const O: usize = 5,
-    const R: usize = 17,
+    const R: usize = 14,
 > {
     engine: Engine<T, 3, S, O, R>,
     unusable: [bool; O],

@@ -16,6 +16,7 @@ mod federated_isolation;
 mod federated_no_alloc;
 mod federated_sharing;
 mod gated_huber;
+mod monitor;
 mod paper000_compression;
 mod paper000_fading;
 mod paper000_forms;

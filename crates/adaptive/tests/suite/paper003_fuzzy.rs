@@ -19,7 +19,7 @@ use kestrel_adaptive::{
 };
 use kestrel_core::adapter::NoiseAdapter;
 use kestrel_core::form::{PredictForm, UpdateForm};
-use kestrel_core::nalgebra::{Matrix2, SVector, Vector2};
+use kestrel_core::nalgebra::{Matrix2, SVector, Vector1, Vector2};
 use kestrel_core::{Filter, FilterError, UpdateReport};
 use kestrel_models::{LinearMeasurement, LinearProcess};
 use proptest::prelude::*;
@@ -471,8 +471,44 @@ fn gain_parameters_and_match_factor() {
     assert_eq!(FuzzyGain::<f64, 2>::new(engine, unusable, 0.0).err(), bad);
     assert_eq!(FuzzyGain::<f64, 2>::new(engine, unusable, 1.5).err(), bad);
     assert!(FuzzyGain::<f64, 2>::new(engine, unusable, 1.0).is_ok());
-    assert_eq!(ODOMETER_RULES.len(), 17);
+    assert_eq!(ODOMETER_RULES.len(), 14);
     assert_eq!(match_factor(9.0, 10.0, 0.5), 0.9);
     assert_eq!(match_factor(0.2, 0.3, 0.5), 1.0);
     assert_eq!(match_factor(3.0, 0.2, 0.5), 6.0);
+}
+
+/// A big innovation mean (r ≥ 3 σ) with a match factor that is not
+/// extreme (small, normal or big) fires no rule: the odometer is unusable
+/// for the epoch. The rule base once completed these cells as "α₁ small"
+/// (dm₁ small or normal) and "α₁ big" (dm₁ big), which made the gain lock
+/// at 0.85 on a sustained slip (see `ODOMETER_RULES`); against that rule
+/// base this test fails (α₁ = 0.85, 0.85, 1.15).
+#[test]
+fn a_big_innovation_with_a_moderate_match_factor_is_unusable() {
+    let engine = odometer_engine::<f64>().unwrap();
+    for dm1 in [0.85, 1.0, 1.15] {
+        let (inference, alpha) = engine.evaluate(&[dm1, 0.0, 4.0]);
+        assert_eq!(alpha, None, "dm₁ {dm1}: {inference:?}");
+        assert_eq!(inference.veto, 0.0);
+    }
+    // Still usable with a medium r (the paper's "dm₁ normal and r medium →
+    // α₁ small") and vetoed at extreme ratios.
+    let (_, alpha) = engine.evaluate(&[1.0, 0.0, 2.0]);
+    assert!((alpha.unwrap() - 0.85).abs() < 1e-12);
+    let (inference, _) = engine.evaluate(&[0.5, 0.0, 4.0]);
+    assert_eq!(inference.veto, 1.0);
+    let mut gain = FuzzyGain::<f64, 1>::odometer().unwrap();
+    gain.set_inputs(OdometerInputs::new(0.96, 0.0, Vector1::new(20.0)));
+    // An innovation of 5σ: r = 5 on the first epoch.
+    let mut step = kestrel_core::adapter::GainStep::new(
+        Vector1::new(5.0),
+        kestrel_core::nalgebra::Matrix1::new(1.0),
+        None,
+        kestrel_core::nalgebra::Matrix1::new(1.0),
+    )
+    .unwrap();
+    let mut report = Default::default();
+    kestrel_core::adapter::NoiseAdapter::before_gain(&mut gain, &mut step, &mut report);
+    assert_eq!(report.decision, GainDecision::Unusable);
+    assert!(step.is_rejected());
 }

@@ -30,6 +30,9 @@ pub struct SensorSample {
     pub attitude: Option<AttitudeFix>,
     /// The odometer reading due at this sample, if any.
     pub odometer: Option<Simulated<OdometerReading>>,
+    /// The odometer's true scale-factor error (constant plus Markov part,
+    /// ratio) with its reading, for judging a filter's estimate.
+    pub odometer_scale: Option<f64>,
 }
 
 /// The sensor data of a scenario for a seed, sample by sample.
@@ -127,6 +130,16 @@ impl Iterator for Simulation {
             return None;
         }
         let motion = *self.stream.motion();
+        let (odometer, odometer_scale) = match self.odometer.as_mut() {
+            Some(o) => {
+                let reading = o.sample(&truth, &motion);
+                let scale = reading
+                    .is_some()
+                    .then(|| o.config().scale_error + o.scale_markov());
+                (reading, scale)
+            }
+            None => (None, None),
+        };
         Some(SensorSample {
             truth,
             imu: self.imu.corrupt(&exact),
@@ -135,10 +148,8 @@ impl Iterator for Simulation {
                 .as_mut()
                 .and_then(|g| g.sample(&truth, &motion.omega_nb)),
             attitude: self.attitude.as_mut().and_then(|a| a.sample(&truth)),
-            odometer: self
-                .odometer
-                .as_mut()
-                .and_then(|o| o.sample(&truth, &motion)),
+            odometer,
+            odometer_scale,
         })
     }
 }

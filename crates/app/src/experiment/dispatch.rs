@@ -5,7 +5,7 @@
 
 use kestrel::adapter::{NoiseAdapter, PriorAdapter};
 use kestrel::adaptive::{
-    HuberInflation, ImprovedAdaptive, SageHusaFading, StrongTracking, WindowedNoise,
+    ChiSquareGate, HuberInflation, ImprovedAdaptive, SageHusaFading, StrongTracking, WindowedNoise,
 };
 use kestrel::form::{FadeStates, SquareRootForm, UnscentedForm};
 use kestrel::nalgebra::{SMatrix, SVector};
@@ -113,6 +113,10 @@ pub fn build_filter<const M: usize, L: FilterLoop<M>>(
         ),
         FilterKind::IctErekf { significance } => run.gnss(
             HuberInflation::<f64, M>::new(significance).map_err(Invalid)?,
+            FadeBlock::All,
+        ),
+        FilterKind::ChiSquareGate { significance } => run.gnss(
+            ChiSquareGate::<f64, M>::new(significance).map_err(Invalid)?,
             FadeBlock::All,
         ),
         FilterKind::StrongTrackingFading {

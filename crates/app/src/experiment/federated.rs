@@ -206,7 +206,7 @@ where
         };
         let adaptation = self.update(at, &fix)?;
         // The fused covariance is not a single filter's: no NEES.
-        Ok(Some((*self.ins.state(), adaptation, None)))
+        Ok(Some((*self.ins.state(), adaptation, None, None)))
     }
 
     /// Propagates every local over the interval collected, with the model
@@ -247,6 +247,8 @@ where
         self.feed_back(at)?;
         Ok(Adaptation {
             nis: to_f64(d0.report.nis + d1.report.nis),
+            adapted_nis: to_f64(d0.report.adapted_nis + d1.report.adapted_nis),
+            rows: 6,
             rejected: d0.report.rejected && d1.report.rejected,
             noise_trace: to_f64(d0.noise.trace() + d1.noise.trace()),
             ..Adaptation::default()

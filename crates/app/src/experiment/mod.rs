@@ -58,6 +58,7 @@ mod data;
 mod dispatch;
 mod error;
 mod federated;
+mod health;
 mod options;
 mod precision;
 mod record;
@@ -68,6 +69,7 @@ pub use aiding::{AidedEngine, GnssAiding, GnssNoise, OdometerAiding, OdometerPro
 pub use data::{SensorSample, Simulation, MAX_IMU_SAMPLES};
 pub use dispatch::{build_filter, closed_loop_ekf, BuildError, FilterLoop};
 pub use error::RunError;
+pub use health::{Health, HealthCheck, HealthEvent, HealthEventKind, HealthSummary};
 pub use options::{PositionAxes, RunOptions};
 pub use precision::{
     compare_federated_precision, MaxDifference, Outcome, Precision, PrecisionOptions,
@@ -75,4 +77,4 @@ pub use precision::{
 };
 pub use record::{Adaptation, Describe, EpochRecord};
 pub use run::{run, run_together, run_with, RunResult};
-pub use summary::RunSummary;
+pub use summary::{RunSummary, ScaleEstimate};

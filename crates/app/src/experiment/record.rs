@@ -1,8 +1,8 @@
 //! Per-epoch output of a run: navigation errors and what the adapters did.
 
 use kestrel::adaptive::{
-    CompositionReport, CompressionReport, DivergenceReport, FuzzyGainReport, HuberReport,
-    StrongTrackingReport, WindowedNoiseReport,
+    CompositionReport, CompressionReport, DivergenceReport, FuzzyGainReport, GateReport,
+    HuberReport, StrongTrackingReport, WindowedNoiseReport,
 };
 use kestrel::nalgebra::Vector3;
 use kestrel::UpdateDetail;
@@ -20,8 +20,16 @@ use kestrel::nav::{Ellipsoid, NavError, NavState};
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Adaptation {
-    /// NIS of the raw innovation against the nominal covariance.
+    /// NIS of the raw innovation against the nominal covariance (the
+    /// filter's model before its noise adapters changed `R`).
     pub nis: f64,
+    /// NIS of the innovation the gain used against the covariance it used
+    /// (after compression, inflation or a new `R`): what the filter itself
+    /// claims about the innovation. Equal to [`nis`](Self::nis) without
+    /// adapters.
+    pub adapted_nis: f64,
+    /// The measurement's size `m` (the degrees of freedom of both NIS).
+    pub rows: usize,
     /// Whether the update was rejected (the prior kept).
     pub rejected: bool,
     /// The fading factor λ applied to the propagated covariance.
@@ -43,6 +51,8 @@ impl Default for Adaptation {
     fn default() -> Self {
         Self {
             nis: 0.0,
+            adapted_nis: 0.0,
+            rows: 0,
             rejected: false,
             fade: 1.0,
             inflation: 1.0,
@@ -73,6 +83,8 @@ impl Adaptation {
         let r = &d.report;
         let mut a = Self {
             nis: r.nis,
+            adapted_nis: r.adapted_nis,
+            rows: M,
             rejected: r.rejected,
             fade: r.fade,
             noise_trace: d.noise.trace(),
@@ -164,6 +176,21 @@ impl EpochRecord {
         self
     }
 
+    /// The record with its [`position_nees`](Self::position_nees) set to
+    /// `nees`.
+    ///
+    /// ```
+    /// use kestrel_app::experiment::{Adaptation, EpochRecord};
+    /// use kestrel::nav::nalgebra::Vector3;
+    /// let r = EpochRecord { time: 1.0, position: Vector3::zeros(), velocity: Vector3::zeros(),
+    ///     attitude: Vector3::zeros(), adaptation: Adaptation::default(), position_nees: None };
+    /// assert_eq!(r.with_nees(Some(2.5)).position_nees, Some(2.5));
+    /// ```
+    pub fn with_nees(mut self, nees: Option<f64>) -> Self {
+        self.position_nees = nees;
+        self
+    }
+
     /// The horizontal position error, m.
     ///
     /// ```
@@ -234,6 +261,11 @@ impl<const M: usize> Describe for HuberReport<f64, M> {
             a.inflation = 1.0 / smallest;
         }
     }
+}
+
+// The rejection itself is in the update report.
+impl Describe for GateReport<f64> {
+    fn describe(&self, _: &mut Adaptation) {}
 }
 
 impl Describe for ThresholdReport<f64> {

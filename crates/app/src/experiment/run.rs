@@ -8,10 +8,12 @@ use super::aiding::Aiding;
 use super::data::{Digest, SensorSample, Simulation};
 use super::dispatch::dispatch;
 use super::error::RunError;
+use super::health::Health;
 use super::options::{PositionAxes, RunOptions};
 use super::record::{Adaptation, EpochRecord};
+use super::summary::ScaleEstimate;
 use super::summary::{Accumulator, RunSummary};
-use crate::scenario::{FilterKind, Scenario};
+use crate::scenario::{FilterKind, MeasurementKind, Scenario};
 use kestrel::nav::engine::{ErrorSystem, LooselyCoupled};
 use kestrel::nav::measurement::GnssAntenna;
 use kestrel::nav::mechanisation::Strapdown;
@@ -143,7 +145,7 @@ pub fn run_together<C: FnMut(usize, &EpochRecord)>(
             let job = Job::new(kind.label(), scenario, &sim, options);
             match dispatch(job, kind).and_then(|mut feed| feed.start().map(|()| feed)) {
                 Ok(feed) => Lane::Running(feed),
-                Err(e) => Lane::Ended(Err(e)),
+                Err(e) => Lane::Ended(Box::new(Err(e))),
             }
         })
         .collect();
@@ -154,7 +156,7 @@ pub fn run_together<C: FnMut(usize, &EpochRecord)>(
             match feed.feed(&sample) {
                 Ok(Some(record)) => on_epoch(i, &record),
                 Ok(None) => {}
-                Err(e) => *lane = Lane::Ended(Err(e)),
+                Err(e) => *lane = Lane::Ended(Box::new(Err(e))),
             }
             running |= matches!(lane, Lane::Running(_));
         }
@@ -166,7 +168,7 @@ pub fn run_together<C: FnMut(usize, &EpochRecord)>(
         .into_iter()
         .map(|lane| match lane {
             Lane::Running(feed) => Ok(feed.summary()),
-            Lane::Ended(result) => result,
+            Lane::Ended(result) => *result,
         })
         .collect())
 }
@@ -175,7 +177,7 @@ pub fn run_together<C: FnMut(usize, &EpochRecord)>(
 /// failure, or before the first sample).
 enum Lane<'a> {
     Running(Box<dyn Feed + 'a>),
-    Ended(Result<RunSummary, RunError>),
+    Ended(Box<Result<RunSummary, RunError>>),
 }
 
 /// Feeds every sample of `sim` to `feed`, handing its aiding epochs to
@@ -213,12 +215,14 @@ pub(crate) trait Feed {
 }
 
 /// What a runner's step returns at an aiding epoch: the navigation
-/// solution, what the update did and the filter's position-error
-/// covariance (NED, m², `None` if the runner has no single one).
+/// solution, what the update did, the filter's position-error covariance
+/// (NED, m², `None` if the runner has no single one) and its odometer
+/// scale-factor estimate and σ (`None` without a scale state).
 pub(crate) type Solved = (
     NavState,
     Adaptation,
     Option<kestrel::nalgebra::Matrix3<f64>>,
+    Option<(f64, f64)>,
 );
 
 /// Everything a run needs besides the filter and its data.
@@ -287,7 +291,14 @@ impl<'a> Job<'a> {
             Ok(adaptation.map(|a| {
                 // δr is states 6–8 of every error model here.
                 let p = engine.covariance().fixed_view::<3, 3>(6, 6).into_owned();
-                (*engine.solution(), a, Some(p))
+                let scale =
+                    <S as kestrel::nav::measurement::ErrorLayout<N>>::ODOMETER_SCALE.map(|i| {
+                        (
+                            engine.corrections().odometer_scale,
+                            engine.covariance()[(i, i)].max(0.0).sqrt(),
+                        )
+                    });
+                (*engine.solution(), a, Some(p), scale)
             }))
         }))
     }
@@ -311,6 +322,9 @@ impl<'a> Job<'a> {
         Box::new(Driver {
             label: self.label,
             scenario: self.scenario,
+            measurement: measurement_name(self.scenario.filter.measurement),
+            health: Health::new(),
+            scale: None,
             acc: self.accumulator(),
             digest: Digest::default(),
             end: self.start.time,
@@ -332,10 +346,22 @@ impl<'a> Job<'a> {
     }
 }
 
+/// The name of a measurement kind in health events.
+fn measurement_name(kind: MeasurementKind) -> &'static str {
+    match kind {
+        MeasurementKind::GnssPositionVelocity => "GNSS",
+        MeasurementKind::AttitudeVelocityPosition => "attitude + GNSS",
+        MeasurementKind::OdometerVelocity => "odometer",
+    }
+}
+
 /// [`Job::driver`]'s run.
 struct Driver<'a, P> {
     label: &'static str,
     scenario: &'a Scenario,
+    measurement: &'static str,
+    health: Health,
+    scale: Option<ScaleEstimate>,
     acc: Accumulator,
     digest: Digest,
     end: f64,
@@ -351,19 +377,32 @@ where
         self.end = sample.truth.time;
         let (label, earth) = (self.label, &self.scenario.earth);
         let record = (self.step)(sample)?
-            .map(|(nav, adaptation, position_covariance)| {
+            .map(|(nav, adaptation, position_covariance, scale)| {
+                if let (Some((estimate, sigma)), Some(truth)) = (scale, sample.odometer_scale) {
+                    self.scale = Some(ScaleEstimate {
+                        estimate,
+                        sigma,
+                        truth,
+                    });
+                }
                 EpochRecord::measure(earth, &nav, &sample.truth, adaptation, label)
                     .map(|r| r.with_position_covariance(position_covariance.as_ref()))
             })
             .transpose()?;
         if let Some(record) = &record {
             self.acc.add(record);
+            self.health
+                .update(record.time, self.measurement, &record.adaptation);
+            self.health.nees(record.time, record.position_nees);
         }
         Ok(record)
     }
 
     fn summary(&self) -> RunSummary {
-        self.acc.finish(self.label, self.end, self.digest.value())
+        let mut s = self.acc.finish(self.label, self.end, self.digest.value());
+        s.health = self.health.summary();
+        s.odometer_scale = self.scale;
+        s
     }
 }
 

@@ -2,6 +2,7 @@
 
 use kestrel::nalgebra::Vector3;
 
+use super::health::HealthSummary;
 use super::options::PositionAxes;
 use super::record::EpochRecord;
 
@@ -42,6 +43,35 @@ pub struct RunSummary {
     /// Fingerprint of the sensor data the filter consumed (equal for runs
     /// on identical data).
     pub data_digest: u64,
+    /// What the health monitor found ([`Health`](super::Health)).
+    pub health: HealthSummary,
+    /// The odometer scale-factor estimate at the last odometer update
+    /// (16-state filters on simulated data; `None` otherwise).
+    pub odometer_scale: Option<ScaleEstimate>,
+}
+
+/// A filter's odometer scale-factor estimate against the truth.
+///
+/// ```
+/// use kestrel_app::experiment::ScaleEstimate;
+/// let s = ScaleEstimate { estimate: 0.0052, sigma: 4e-4, truth: 0.005 };
+/// assert!((s.z() - 0.5).abs() < 1e-9);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ScaleEstimate {
+    /// The estimate `k̂` (ratio).
+    pub estimate: f64,
+    /// Its σ from the filter's covariance.
+    pub sigma: f64,
+    /// The simulated odometer's scale-factor error (constant plus Markov).
+    pub truth: f64,
+}
+
+impl ScaleEstimate {
+    /// The normalised error `(k̂ − k)/σ`.
+    pub fn z(&self) -> f64 {
+        (self.estimate - self.truth) / self.sigma
+    }
 }
 
 impl RunSummary {
@@ -132,6 +162,8 @@ impl Accumulator {
             final_position: self.last,
             end_time,
             data_digest: digest,
+            health: HealthSummary::default(),
+            odometer_scale: None,
         }
     }
 }

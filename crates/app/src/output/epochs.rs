@@ -14,9 +14,10 @@ use crate::experiment::{EpochRecord, PositionAxes};
 /// use kestrel_app::experiment::PositionAxes;
 /// let c = epoch_columns(PositionAxes::NorthEastDown);
 /// assert_eq!(c[..4], ["time_s", "pos_north_m", "pos_east_m", "pos_down_m"]);
-/// assert_eq!(c.len(), 18);
+/// assert_eq!(c.len(), 19);
+/// assert_eq!(c[18], "nees");
 /// ```
-pub fn epoch_columns(axes: PositionAxes) -> [&'static str; 18] {
+pub fn epoch_columns(axes: PositionAxes) -> [&'static str; 19] {
     let position = match axes {
         PositionAxes::NorthEastDown => ["pos_north_m", "pos_east_m", "pos_down_m"],
         PositionAxes::EastNorthUp => ["pos_east_m", "pos_north_m", "pos_up_m"],
@@ -40,6 +41,7 @@ pub fn epoch_columns(axes: PositionAxes) -> [&'static str; 18] {
         "compression",
         "alpha1",
         "noise_trace",
+        "nees",
     ]
 }
 
@@ -56,7 +58,7 @@ pub fn epoch_columns(axes: PositionAxes) -> [&'static str; 18] {
 ///     position_nees: None };
 /// w.write(&r).unwrap();
 /// let text = String::from_utf8(w.finish_into_inner().unwrap()).unwrap();
-/// assert_eq!(text.lines().nth(1), Some("0.1,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,1,1.0,1.0,0,1.0,1.0,0.0"));
+/// assert_eq!(text.lines().nth(1), Some("0.1,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,1,1.0,1.0,0,1.0,1.0,0.0,"));
 /// ```
 pub struct EpochCsvWriter<W: io::Write> {
     csv: Rows<W>,
@@ -156,7 +158,7 @@ impl<W: io::Write> EpochCsvWriter<W> {
     /// let text = String::from_utf8(w.finish_into_inner().unwrap()).unwrap();
     /// assert!(text.starts_with("time_s,pos_north_m,pos_east_m,pos_down_m,vel_north_mps,"));
     /// assert!(text.lines().next().unwrap().contains(",att_down_deg,update,nis,"));
-    /// assert_eq!(text.lines().nth(1), Some("0.5,1.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0,,,,,,,,"));
+    /// assert_eq!(text.lines().nth(1), Some("0.5,1.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0,0,,,,,,,,,"));
     /// ```
     pub fn with_update_column(out: W, axes: PositionAxes) -> io::Result<Self> {
         let mut csv = Rows::from_writer(out);
@@ -207,7 +209,16 @@ impl<W: io::Write> EpochCsvWriter<W> {
                 self.text("")?;
             }
         }
+        self.nees(r.position_nees)?;
         self.csv.end_record()
+    }
+
+    /// The NEES column: the value, or empty without one.
+    fn nees(&mut self, nees: Option<f64>) -> io::Result<()> {
+        match nees {
+            Some(v) => self.number(v),
+            None => self.text(""),
+        }
     }
 
     /// Flushes what is buffered, keeping the writer.
@@ -251,6 +262,7 @@ impl<W: io::Write> EpochCsvWriter<W> {
     pub fn write(&mut self, r: &EpochRecord) -> io::Result<()> {
         self.errors(r)?;
         self.adaptation(&r.adaptation)?;
+        self.nees(r.position_nees)?;
         self.csv.end_record()
     }
 

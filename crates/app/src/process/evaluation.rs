@@ -294,6 +294,9 @@ pub(crate) struct Evaluation {
     pub consistency: Consistency,
     /// The NEES at the compared epochs, thinned for the plots.
     pub nees: Thinned<(f64, f64)>,
+    /// The NEES at the truth epoch of the last sample, if one fell on it
+    /// (for the health monitor, which takes it after an update).
+    pub sample_nees: Option<f64>,
     /// The σ of the navigation errors (attitude rad, velocity m/s,
     /// position m; NED) at the compared epochs, thinned in step with
     /// `errors` (NaN without a covariance).
@@ -337,6 +340,7 @@ impl Evaluation {
             previous_covariance: None,
             consistency: Consistency::default(),
             nees: Thinned::default(),
+            sample_nees: None,
             sigmas: Thinned::default(),
             csv,
             csv_path: s.csv_path,
@@ -367,17 +371,20 @@ impl Evaluation {
             self.truth.next = None;
             self.first_truth.get_or_insert(truth.time);
             if truth.time >= t - SAME_TIME {
-                let dr = self.compare(nav, &reference, update)?;
-                self.check(truth.time, &dr, covariance);
+                let r = self.error(nav, &reference, update)?;
+                let nees = self.check(truth.time, &r.position, covariance);
+                self.sample_nees = nees;
+                self.record(r.with_nees(nees), &reference, update)?;
             } else if let Some(p) = self.previous.filter(|p| truth.time > p.time) {
                 let between = interpolate(&p, nav, truth.time);
-                let dr = self.compare(&between, &reference, None)?;
+                let r = self.error(&between, &reference, None)?;
                 let w = (truth.time - p.time) / (t - p.time);
                 let cov = match (&self.previous_covariance, covariance) {
                     (Some(a), Some(b)) => Some(a + (b - a) * w),
                     _ => None,
                 };
-                self.check(truth.time, &dr, cov.as_ref());
+                let nees = self.check(truth.time, &r.position, cov.as_ref());
+                self.record(r.with_nees(nees), &reference, None)?;
             } else {
                 self.before += 1;
             }
@@ -389,23 +396,27 @@ impl Evaluation {
 
     /// The NEES of the position error `dr` (NED) at `t` with covariance
     /// `p`, if there is one.
-    fn check(&mut self, t: f64, dr: &Vector3<f64>, p: Option<&NavCovariance>) {
+    fn check(&mut self, t: f64, dr: &Vector3<f64>, p: Option<&NavCovariance>) -> Option<f64> {
         let sigma = p.map_or([f64::NAN; 9], |p| {
             core::array::from_fn(|i| p[(i, i)].max(0.0).sqrt())
         });
         self.sigmas.push(sigma);
         let position = p.map(|p| p.fixed_view::<3, 3>(6, 6).into_owned());
-        if let Some(nees) = position.and_then(|p| self.consistency.add(dr, &p)) {
+        let nees = position.and_then(|p| self.consistency.add(dr, &p));
+        if let Some(nees) = nees {
             self.nees.push((t, nees));
         }
+        nees
     }
 
-    fn compare(
+    /// The errors of `nav` against `reference`, with the update made at
+    /// it (NaN velocity and attitude errors for a position-only reference).
+    fn error(
         &mut self,
         nav: &NavState,
         reference: &Reference,
         update: Option<Adaptation>,
-    ) -> Result<Vector3<f64>, Error> {
+    ) -> Result<EpochRecord, Error> {
         let truth = &reference.state;
         let mut nav = *nav;
         if let Some(lever) = self.antenna {
@@ -425,14 +436,23 @@ impl Evaluation {
                 truth.time
             )));
         }
-        let r = EpochRecord {
+        Ok(EpochRecord {
             time: truth.time,
             position: e.dr,
             velocity: e.dv,
             attitude: e.phi,
             adaptation: update.unwrap_or_default(),
             position_nees: None,
-        };
+        })
+    }
+
+    /// Adds the compared epoch `r` to the statistics and writes its row.
+    fn record(
+        &mut self,
+        r: EpochRecord,
+        reference: &Reference,
+        update: Option<Adaptation>,
+    ) -> Result<(), Error> {
         self.all.add(&r, reference.full);
         self.drift.add(r.time, &r.position);
         self.errors.push(r);
@@ -442,8 +462,7 @@ impl Evaluation {
         }
         self.csv
             .write_compared(&r, update.is_some(), !reference.full)
-            .map_err(|e| Error::io(&self.csv_path, e))?;
-        Ok(e.dr)
+            .map_err(|e| Error::io(&self.csv_path, e))
     }
 
     /// The error file's name.

@@ -32,7 +32,7 @@ mod traces;
 
 use std::path::PathBuf;
 
-use crate::experiment::{EpochRecord, PositionAxes};
+use crate::experiment::{EpochRecord, HealthEvent, HealthEventKind, HealthSummary, PositionAxes};
 use crate::scenario::FilterKind;
 use crate::transaction::{Begin, Cancel, InputRecord, Provenance, Transaction};
 use crate::Error;
@@ -96,6 +96,10 @@ pub struct Inputs {
     /// writes `smoothed.nav`, `smoothed.csv`, `smoothed_imu_errors.*`,
     /// `smoothed_std.*` and, with a truth, `errors_smoothed.csv`.
     pub smooth: bool,
+    /// Stop the run with an error at the health monitor's first alarm
+    /// (`--stop-on-divergence`; see [`Health`](crate::experiment::Health)).
+    /// Without it an alarm is a warning in the summary.
+    pub stop_on_divergence: bool,
 }
 
 impl Inputs {
@@ -115,6 +119,7 @@ impl Inputs {
             out: out.into(),
             outages: Vec::new(),
             smooth: false,
+            stop_on_divergence: false,
         }
     }
 }
@@ -206,6 +211,10 @@ pub struct ProcessReport {
     pub files: Vec<PathBuf>,
     /// The smoothed solution (with `smooth`).
     pub smoothed: Option<SmoothedReport>,
+    /// What the health monitor found over the forward pass.
+    pub health: HealthSummary,
+    /// Its events in time order (at most the first 100).
+    pub health_events: Vec<HealthEvent>,
 }
 
 /// Processes the files of `inputs`, writes the results into `inputs.out`
@@ -418,6 +427,7 @@ pub fn summary(r: &ProcessReport) -> String {
     if let Some(c) = &r.consistency {
         s += &nees_line(c);
     }
+    s += &health_block(r);
     s += &drift_block(&r.drift);
     if let Some(sm) = &r.smoothed {
         s += &format!(
@@ -458,6 +468,51 @@ fn nees_line(c: &Consistency) -> String {
         ),
         _ => "position NEES: no epoch with a usable covariance\n".to_owned(),
     }
+}
+
+/// The health monitor's lines: one per event (the first few), a warning
+/// when the run ends diverged, or that there was no alarm.
+fn health_block(r: &ProcessReport) -> String {
+    const SHOWN: usize = 5;
+    let h = &r.health;
+    let mut s = String::new();
+    if h.alarms == 0 {
+        return format!(
+            "health: no alarm (innovations{} tested in windows of 20 updates)\n",
+            if h.nees_checked {
+                " and position NEES"
+            } else {
+                ""
+            }
+        );
+    }
+    for e in r.health_events.iter().take(SHOWN) {
+        let tag = if e.kind == HealthEventKind::Recovered {
+            "health"
+        } else {
+            "warning"
+        };
+        s += &format!("{tag}: {} {e}\n", r.filter);
+    }
+    if r.health_events.len() > SHOWN {
+        s += &format!(
+            "health: … {} more events ({} alarms in all)\n",
+            r.health_events.len() - SHOWN,
+            h.alarms
+        );
+    }
+    if h.diverged() {
+        s += &format!(
+            "warning: {} diverged: the {} alarm is still raised at the end of the run\n",
+            r.filter,
+            if h.nees_checked {
+                "position NEES"
+            } else {
+                "innovation"
+            }
+        );
+    }
+    s
 }
 
 /// The drift table's lines (nothing for no window).

@@ -5,7 +5,7 @@ use kestrel_io::input::Input as In;
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 
-use crate::experiment::Adaptation;
+use crate::experiment::{Adaptation, Health, HealthEvent, HealthEventKind};
 use kestrel::adapter::PriorAdapter;
 use kestrel::form::{Form, PredictForm, UpdateForm};
 use kestrel::nav::engine::{ErrorSystem, LooselyCoupled};
@@ -69,7 +69,17 @@ pub(crate) struct Job<'p> {
     pub constraints: Constraints,
     /// The smoothed solution's errors, thinned (with a truth).
     pub smoothed_traces: SmoothedTraces,
+    /// The filter-health monitor ([`Health`]).
+    pub health: Health,
+    /// Its events (alarms, refusals, recoveries), the first
+    /// [`HEALTH_EVENTS`] of them.
+    pub health_events: Vec<HealthEvent>,
+    /// Stop the run at the first alarm (`--stop-on-divergence`).
+    pub stop_on_divergence: bool,
 }
+
+/// The most health events a run keeps for its report.
+pub(crate) const HEALTH_EVENTS: usize = 100;
 
 /// The GNSS fixes of a run: used, skipped in outages, before the initial
 /// time and after the last IMU sample (read and checked, not used).
@@ -324,6 +334,9 @@ impl<'p> Job<'p> {
             fix_track: Thinned::default(),
             constraints: Constraints::new(settings.nhc, settings.zupt),
             smoothed_traces: SmoothedTraces::default(),
+            health: Health::new(),
+            health_events: Vec::new(),
+            stop_on_divergence: inputs.stop_on_divergence,
         })
     }
 
@@ -438,6 +451,23 @@ impl<'p> Job<'p> {
             .into()),
             _ => Ok(()),
         }
+    }
+
+    /// Keeps the health `event` (if any) of the filter `label`; an error
+    /// for an alarm when the run stops on divergence.
+    fn health_event(&mut self, label: &str, event: Option<HealthEvent>) -> Result<(), Error> {
+        let Some(event) = event else {
+            return Ok(());
+        };
+        if self.health_events.len() < HEALTH_EVENTS {
+            self.health_events.push(event);
+        }
+        if self.stop_on_divergence && event.kind != HealthEventKind::Recovered {
+            return Err(Error::Failed(format!(
+                "{label} {event}; stopped (--stop-on-divergence)"
+            )));
+        }
+        Ok(())
     }
 
     /// Reads and checks the GNSS lines after the last IMU sample, counting
@@ -684,6 +714,8 @@ where
             })?;
             update = Some(adaptation);
             self.record_epoch()?;
+            let event = self.job.health.update(at.time, "GNSS", &adaptation);
+            self.job.health_event(self.label, event)?;
         }
         Ok(update)
     }
@@ -713,6 +745,8 @@ where
             at.diverged(e, Step::Odometer, input)
         })?;
         self.record_epoch()?;
+        let event = self.job.health.update(at.time, "odometer", &adaptation);
+        self.job.health_event(self.label, event)?;
         Ok(Some(adaptation))
     }
 
@@ -740,6 +774,17 @@ where
                 )),
                 other => other,
             })?;
+        // With a truth, the position NEES after an update.
+        let nees = self
+            .job
+            .sink
+            .evaluation
+            .as_mut()
+            .and_then(|e| e.sample_nees.take());
+        if update.is_some() {
+            let event = self.job.health.nees(at.time, nees);
+            self.job.health_event(self.label, event)?;
+        }
         if let Some(r) = self.job.smoother.as_mut() {
             r.sample(self.engine.solution(), self.engine.corrections())?;
         }

@@ -153,6 +153,8 @@ fn report(
         axes: settings.axes,
         files,
         smoothed: job.smoothed.take(),
+        health: job.health.summary(),
+        health_events: std::mem::take(&mut job.health_events),
     }
 }
 

@@ -12,26 +12,30 @@ mod report;
 mod sensitivity;
 mod stats;
 mod table;
+mod verdict;
 mod window;
 
 use std::path::PathBuf;
 
 use crate::experiment::PositionAxes;
-use crate::scenario::{tuned, FilterKind, MeasurementKind, Scenario};
+use crate::scenario::{tuned, variants, FilterKind, MeasurementKind, Scenario, STUDY_SEEDS_FROM};
 
 pub use consistency::{
-    nees_rows, nees_table, NeesRow, CONSERVATIVE_BELOW, OVERCONFIDENT_ABOVE, SETTLING_SHARE,
+    anees_band, nees_rows, nees_table, Anees, NeesRow, Reading, CONSISTENT_SHARE, SETTLING_SHARE,
 };
 pub use federated::{federated_section, largest_difference, precision_section};
 pub use metric::Metric;
 pub use monte_carlo::{run_monte_carlo, FilterOutcome, MonteCarloPlan, RunOutcome};
 pub use paper::{paper, Paper, PaperRow, PaperTable, PAPERS};
-pub use report::{text_report, write_runs_csv, write_summary_csv, ReportInput};
+pub use report::{scale_table, text_report, write_runs_csv, write_summary_csv, ReportInput};
 pub use sensitivity::{
-    run_study, study_table, write_study_csv, StudyPlan, StudyRow, STUDY_METRICS,
+    run_study, study_disclosure, study_table, write_study_csv, StudyPlan, StudyRow, STUDY_METRICS,
 };
 pub use stats::{quantile, MeanStd, Quartiles};
 pub use table::TextTable;
+pub use verdict::{
+    decide, from_headline, from_study, Basis, Comparison, Evidence, Outcome, Verdict,
+};
 pub use window::{Window, WindowError, WindowProbe};
 
 use crate::output::write_epochs_csv;
@@ -46,8 +50,8 @@ pub const MAX_RUNS: usize = 10_000;
 pub const MAX_STUDY_RUNS: usize = 1_000;
 
 /// Seeds of the fault-free consistency runs (at most; fewer with fewer
-/// runs).
-pub const CONSISTENCY_RUNS: usize = 5;
+/// runs): the Monte Carlo the ANEES averages over.
+pub const CONSISTENCY_RUNS: usize = 20;
 
 /// The most worker threads a reproduction accepts.
 pub const MAX_THREADS: usize = 256;
@@ -192,13 +196,15 @@ pub fn reproduce_scenario(
         for note in p.notes {
             text.push_str(&format!("note: {note}\n"));
         }
+        // The disclosures are reviewed text: their numbers come from the
+        // runs named in them, not from this run's tables.
         for note in p.disclosures {
             text.push_str(&format!("disclosure: {note}\n"));
         }
-        text.push_str(&format!(
-            "verdict (of the full-length runs and study): {}\n",
-            p.verdict
-        ));
+        if let Some(d) = study_disclosure(&study) {
+            text.push_str(&format!("disclosure: {d}\n"));
+        }
+        text.push_str(&verdict_text(scenario, p, &plan, &outcomes, &study));
     }
     Ok(Reproduction {
         scenario: scenario.clone(),
@@ -208,6 +214,50 @@ pub fn reproduce_scenario(
         study,
         text,
     })
+}
+
+/// The computed verdict of `paper` (from the study, or from the headline
+/// runs when it was skipped) and the reviewed reading beside it.
+fn verdict_text(
+    scenario: &Scenario,
+    paper: &Paper,
+    plan: &MonteCarloPlan,
+    outcomes: &[FilterOutcome],
+    study: &[StudyRow],
+) -> String {
+    let computed = if study.is_empty() {
+        // The paper's baseline is the headline variant's first filter.
+        let baseline = variants(&scenario.name)
+            .into_iter()
+            .find(|v| v.headline)
+            .map_or(scenario.filters[0], |v| v.scenario.filters[0]);
+        let n = scenario.filters.len();
+        let skip = scenario
+            .filters
+            .iter()
+            .position(|k| *k == baseline)
+            .unwrap_or(0);
+        let seeds = plan.seed..plan.seed.saturating_add(plan.runs as u64);
+        let why = if variants(&scenario.name).is_empty() {
+            "this paper has no study variants"
+        } else {
+            "the study was skipped"
+        };
+        from_headline(&outcomes[skip..], n - skip, seeds, why)
+    } else {
+        from_study(study, STUDY_SEEDS_FROM)
+    };
+    match computed {
+        Some(v) => format!(
+            "{}reading (as reviewed on the full-length runs and study seeds 2000–2009, not recomputed): {}\n",
+            v.text(),
+            paper.verdict
+        ),
+        None => format!(
+            "verdict (not computed: no comparison over seeds): {}\n",
+            paper.verdict
+        ),
+    }
 }
 
 impl Reproduction {

@@ -4,6 +4,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use crate::experiment::PositionAxes;
+use crate::experiment::ScaleEstimate;
 use crate::scenario::{Scenario, TUNING_SEEDS};
 
 use super::metric::Metric;
@@ -87,6 +88,19 @@ pub fn text_report(input: &ReportInput<'_>) -> String {
     }
     no_epochs(&mut out, input.outcomes);
     failures(&mut out, input.outcomes, plan);
+    health(&mut out, input.outcomes, plan);
+    let scales: Vec<(String, Vec<ScaleEstimate>)> = input
+        .outcomes
+        .iter()
+        .map(|o| {
+            let v = o.completed().filter_map(|s| s.odometer_scale).collect();
+            (o.label.clone(), v)
+        })
+        .collect();
+    out.push_str(&scale_table(
+        "odometer scale factor at the end of the runs (with the scenario's faults)",
+        &scales,
+    ));
     out
 }
 
@@ -105,6 +119,98 @@ fn no_epochs(out: &mut String, outcomes: &[FilterOutcome]) {
             );
         }
     }
+}
+
+/// The odometer scale-factor estimates of each filter's runs against the
+/// simulated truth: the mean error and its standard error, the mean σ,
+/// the mean z² (1 for an honest σ) and the runs beyond 3σ. Empty when no
+/// filter has a scale state.
+pub fn scale_table(title: &str, rows: &[(String, Vec<ScaleEstimate>)]) -> String {
+    if rows.iter().all(|(_, v)| v.is_empty()) {
+        return String::new();
+    }
+    let mut t = TextTable::new(
+        [
+            "filter",
+            "mean k̂ − k (standard error)",
+            "mean σ",
+            "mean z²",
+            "|z| > 3",
+            "runs",
+        ]
+        .map(String::from)
+        .to_vec(),
+    );
+    for (label, v) in rows {
+        if v.is_empty() {
+            continue;
+        }
+        let n = v.len() as f64;
+        let errors: Vec<f64> = v.iter().map(|s| s.estimate - s.truth).collect();
+        let mean = errors.iter().sum::<f64>() / n;
+        let se = if v.len() > 1 {
+            (errors.iter().map(|e| (e - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt() / n.sqrt()
+        } else {
+            f64::NAN
+        };
+        let sigma = v.iter().map(|s| s.sigma).sum::<f64>() / n;
+        let z2 = v.iter().map(|s| s.z().powi(2)).sum::<f64>() / n;
+        let beyond = v.iter().filter(|s| s.z().abs() > 3.0).count();
+        t.row(vec![
+            label.clone(),
+            format!("{mean:+.2e} ({se:.1e})"),
+            format!("{sigma:.2e}"),
+            format!("{z2:.2}"),
+            beyond.to_string(),
+            v.len().to_string(),
+        ]);
+    }
+    format!(
+        "{title}: k̂ the estimate, k the simulated truth (constant plus Markov part), z = (k̂ − k)/σ\n{t}\n"
+    )
+}
+
+/// The health monitor's findings per filter: runs with an alarm, runs
+/// diverged (an alarm still raised at the end), and the first of each.
+fn health(out: &mut String, outcomes: &[FilterOutcome], plan: &MonteCarloPlan) {
+    let mut t = TextTable::new(
+        [
+            "health monitor",
+            "runs with an alarm",
+            "first alarm (run: time, statistic)",
+            "runs diverged",
+        ]
+        .map(String::from)
+        .to_vec(),
+    );
+    for o in outcomes {
+        let done: Vec<(usize, &crate::experiment::RunSummary)> = o
+            .runs
+            .iter()
+            .enumerate()
+            .filter_map(|(i, r)| r.as_ref().ok().map(|(s, _)| (i, s)))
+            .collect();
+        let alarmed = done.iter().filter(|(_, s)| s.health.alarms > 0).count();
+        let diverged = done.iter().filter(|(_, s)| s.health.diverged()).count();
+        let first = done
+            .iter()
+            .find_map(|(i, s)| s.health.first_alarm.map(|e| (*i, e)))
+            .map_or("—".to_string(), |(i, e)| {
+                let seed = plan.seed.wrapping_add(i as u64);
+                format!("run {i} (seed {seed}): {} s, {}", e.time, e.check)
+            });
+        t.row(vec![
+            o.label.clone(),
+            format!("{alarmed} of {}", done.len()),
+            first,
+            format!("{diverged} of {}", done.len()),
+        ]);
+    }
+    let _ = writeln!(out, "{t}");
+    let _ = writeln!(
+        out,
+        "   alarm: the GNSS/odometer NIS (or the position NEES) beyond its χ² bound for 3 windows of 20 updates in a row; diverged: an alarm still raised at the end of the run (the NEES's, the truth being known)\n"
+    );
 }
 
 /// Which of the runs' seeds the scenario's parameters were chosen on.
@@ -301,8 +407,12 @@ fn known(v: f64) -> String {
 /// Writes the per-run CSV: one row per filter and run.
 ///
 /// Columns: `scenario, filter, run, seed, status` (`ok` or `failed`),
-/// `failure` (why, empty when ok), then every [`Metric`] of the run (empty
-/// when it failed).
+/// `failure` (why, empty when ok), then every [`Metric`] of the run, then
+/// the health monitor's `health_alarms` (alarms raised), `first_alarm_s`
+/// (empty without one) and `diverged` (1: an alarm still raised at the
+/// end), and for 16-state filters the final `odometer_scale` estimate, its
+/// `odometer_scale_sigma` and the simulated `odometer_scale_truth` — all
+/// empty when the run failed.
 ///
 /// # Errors
 /// [`Error::Io`] if the file cannot be written.
@@ -314,6 +424,18 @@ pub fn write_runs_csv(path: &Path, input: &ReportInput<'_>) -> Result<(), Error>
         .map(String::from)
         .to_vec();
     header.extend(Metric::ALL.iter().map(|m| m.name(axes)));
+    header.extend(
+        [
+            "health_alarms",
+            "first_alarm_s",
+            "diverged",
+            "odometer_scale",
+            "odometer_scale_sigma",
+            "odometer_scale_truth",
+        ]
+        .iter()
+        .map(|s| s.to_string()),
+    );
     w.write_record(&header).map_err(io)?;
     for o in input.outcomes {
         for (run, outcome) in o.runs.iter().enumerate() {
@@ -335,10 +457,21 @@ pub fn write_runs_csv(path: &Path, input: &ReportInput<'_>) -> Result<(), Error>
                             String::new()
                         }
                     }));
+                    let h = &summary.health;
+                    row.push(h.alarms.to_string());
+                    row.push(h.first_alarm.map_or(String::new(), |e| e.time.to_string()));
+                    row.push(u8::from(h.diverged()).to_string());
+                    match summary.odometer_scale {
+                        Some(k) => {
+                            row.extend([k.estimate, k.sigma, k.truth].map(|v| v.to_string()))
+                        }
+                        None => row.extend([String::new(), String::new(), String::new()]),
+                    }
                 }
                 Err(e) => {
                     row.extend(["failed".to_string(), e.to_string()]);
                     row.extend(Metric::ALL.iter().map(|_| String::new()));
+                    row.extend((0..6).map(|_| String::new()));
                 }
             }
             w.write_record(&row).map_err(io)?;

@@ -65,6 +65,14 @@ pub enum FilterKind {
         /// Significance α of the tests.
         significance: f64,
     },
+    /// The Kalman filter with a χ² gate on its innovations: an update whose
+    /// NIS exceeds `χ²_{1−α}(m)` is rejected (the prior kept). Not in any
+    /// paper: the protection against outliers a careful engineer gives a
+    /// plain KF, a baseline for paper 000.
+    ChiSquareGate {
+        /// Significance α of the gate.
+        significance: f64,
+    },
     /// Paper 003's baseline: the odometer is isolated while
     /// `|v_SINS − v_OD|` exceeds `threshold` (m/s); optionally with the
     /// same windowed re-estimation of R as the fuzzy filter (not in the
@@ -165,13 +173,14 @@ pub(crate) const FEDERATED_STATES: usize = 15;
 
 impl FilterKind {
     /// Every kind's name in configuration files, in the order of the enum.
-    pub const NAMES: [&'static str; 9] = [
+    pub const NAMES: [&'static str; 10] = [
         "ekf",
         "sage-husa-fading",
         "improved-adaptive",
         "federated-ukf",
         "federated-sr-ukf",
         "ict-erekf",
+        "chi-square-gate",
         "max-threshold",
         "fuzzy-adaptive",
         "strong-tracking-fading",
@@ -208,6 +217,7 @@ impl FilterKind {
             Self::FederatedUkf { .. } => "federated-ukf",
             Self::FederatedSrUkf { .. } => "federated-sr-ukf",
             Self::IctErekf { .. } => "ict-erekf",
+            Self::ChiSquareGate { .. } => "chi-square-gate",
             Self::MaxThreshold { .. } => "max-threshold",
             Self::FuzzyAdaptive { .. } => "fuzzy-adaptive",
             Self::StrongTrackingFading { .. } => "strong-tracking-fading",
@@ -224,6 +234,7 @@ impl FilterKind {
             Self::FederatedUkf { .. } => "federated: local GNSS KF + local UKF",
             Self::FederatedSrUkf { .. } => "federated with the square-root UKF",
             Self::IctErekf { .. } => "innovation χ² tests + robust R inflation",
+            Self::ChiSquareGate { .. } => "EKF rejecting updates beyond a χ² gate",
             Self::MaxThreshold { .. } => "isolate the odometer on a speed mismatch",
             Self::FuzzyAdaptive { .. } => "fuzzy odometer gain + windowed R",
             Self::StrongTrackingFading { .. } => "suboptimal (strong-tracking) fading factor",
@@ -270,6 +281,9 @@ impl FilterKind {
             },
             "ict-erekf" => Self::IctErekf {
                 significance: p.number("significance", 0.05)?,
+            },
+            "chi-square-gate" => Self::ChiSquareGate {
+                significance: p.number("significance", 0.01)?,
             },
             "max-threshold" => Self::MaxThreshold {
                 threshold: p.number_or("threshold_m_s", "threshold", 1.0)?,
@@ -332,6 +346,10 @@ impl FilterKind {
             }
             Self::IctErekf { significance } => vec![Param {
                 comment: "significance α of the χ² tests, [0.01, 0.15]",
+                ..n("significance", significance)
+            }],
+            Self::ChiSquareGate { significance } => vec![Param {
+                comment: "significance α of the gate, (0, 1)",
                 ..n("significance", significance)
             }],
             Self::MaxThreshold {
@@ -417,6 +435,7 @@ impl FilterKind {
             Self::FederatedUkf { .. } => "federated UKF",
             Self::FederatedSrUkf { .. } => "federated SR-UKF",
             Self::IctErekf { .. } => "ICT-EREKF",
+            Self::ChiSquareGate { .. } => "KF + χ² gate",
             Self::MaxThreshold { r_window: None, .. } => "max threshold",
             Self::MaxThreshold { .. } => "max threshold + windowed R",
             Self::FuzzyAdaptive { .. } => "fuzzy adaptive",

@@ -28,8 +28,8 @@ pub use setup::{
     MeasurementNoise,
 };
 pub use study::{
-    fault_free, tuned, variants, Variant, STUDY_SEEDS_FROM, TEST_SEEDS_FROM, TUNED_003_THRESHOLD,
-    TUNING_SEEDS,
+    fault_free, tuned, variants, Variant, PROTECTED_000, STUDY_SEEDS_FROM, TEST_SEEDS_FROM,
+    TUNED_003_THRESHOLD, TUNING_SEEDS,
 };
 pub use uav_manoeuvres::scenario_004;
 pub use urban_multipath::scenario_002;

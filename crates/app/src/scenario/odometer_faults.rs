@@ -54,11 +54,12 @@ use kestrel::sim::{
 ///   0.5 %. The filter models gyro and accelerometer biases as Markov
 ///   processes (σ 0.01°/h and 100 µg, τ = 3600 s).
 /// - R of the velocity matching: 0.1 m/s per NED axis; max-threshold
-///   1 m/s; fuzzy R window 20 innovations.
+///   1 m/s (both chosen: the paper gives neither); fuzzy R window 20
+///   innovations.
 ///
 /// **Tuning seeds:** 3 (the fuzzy rules' plateau) and 100–103 (the sweep
 /// of the tuned max-threshold baseline, [`tuned`](super::tuned));
-/// [`TUNING_SEEDS`](super::TUNING_SEEDS). The paper's 1 m/s baseline is
+/// [`TUNING_SEEDS`](super::TUNING_SEEDS). The chosen 1 m/s baseline is
 /// kept here; a tuned threshold and the baseline with the fuzzy filter's
 /// windowed R are in [`tuned`](super::tuned) and [`variants`](super::variants).
 ///

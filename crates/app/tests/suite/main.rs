@@ -1,9 +1,11 @@
 //! The application crate's integration tests as one binary: the code the
 //! files share is compiled and linked once, not once per file.
 
+mod anees;
 mod claims_held_out;
 mod config;
 mod experiment;
+mod health;
 mod mechanisation_accuracy;
 mod odometer_faults;
 mod odometer_run;

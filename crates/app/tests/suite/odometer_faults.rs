@@ -8,10 +8,12 @@
 //! suppresses both. Asserted: unprocessed faults ruin dead reckoning
 //! (hundreds of metres); both processings remove the spin and skid (the
 //! error just after them stays within 3 m of the fault-free run); the
-//! fuzzy processing rejects exactly the spin and skid readings, rescales
-//! the slipping ones instead of dropping them, and keeps the whole run
-//! within 0.1 % of the distance, while the threshold method, which uses
-//! slipping readings below its threshold and isolates the others, does not.
+//! fuzzy processing rejects the spin and skid readings and nearly every
+//! slipping one (their innovations are big: no rule of the paper's list
+//! takes a big innovation with a normal match factor), uses the readings
+//! after them, and keeps the whole run within 0.1 % of the distance, while
+//! the threshold method, which uses slipping readings below its threshold
+//! and isolates the others, does not.
 
 use crate::odometer_run::{run_003, DrRun, Processing};
 use kestrel::nav::odometer::{FuzzyOdometer, MaxThreshold};
@@ -66,8 +68,14 @@ fn fault_processing_suppresses_the_odometer_faults() {
         }
     }
 
-    assert_eq!(fuzzy.rejected, 60, "the spin and skid readings only");
-    assert_eq!(fuzzy.rejected_faulty, 60);
+    // The spin and skid readings, and all but a few slipping ones; few
+    // good readings (at most 2 %).
+    assert!(fuzzy.rejected_faulty > 1000, "{}", fuzzy.rejected_faulty);
+    assert!(
+        fuzzy.rejected - fuzzy.rejected_faulty < 700,
+        "{} good readings rejected",
+        fuzzy.rejected - fuzzy.rejected_faulty
+    );
     assert!(
         fuzzy.worst < limit,
         "fuzzy worst {:.1} m > {limit:.1} m",
@@ -78,4 +86,47 @@ fn fault_processing_suppresses_the_odometer_faults() {
         "the threshold isolates most slipping readings"
     );
     assert!(threshold.worst > limit && threshold.worst > 4.0 * fuzzy.worst);
+}
+
+/// Finding 4 of the consistency review: a sustained slip (the odometer
+/// reading 1.05 × the speed for 300 s from 2500 s, no other fault) used to
+/// lock the fuzzy gain at α₁ = 0.85 for the rest of the drive: a big
+/// innovation mean with a normal match factor fired the rule base's
+/// completion "α₁ small", the closed loop pulled the INS speed down to
+/// 0.85 × the odometer's, dm₁ became "small" and kept α₁ small (worst
+/// error 2.5 km on seeds 500–503). Without that completion (no rule fires
+/// for a big innovation with a moderate dm₁: the odometer is unusable),
+/// the worst error on held-out seed 1007 stays within 0.1 % of the
+/// distance, and in the last 500 s, after the slip, the gain is 1 again.
+#[test]
+fn the_fuzzy_gain_does_not_lock_on_a_sustained_slip() {
+    use kestrel::sim::{OdometerFault, TimeWindow};
+    use kestrel_app::experiment::{run, RunOptions};
+    use kestrel_app::scenario::{by_name, FilterKind};
+    let mut s = by_name("003").unwrap();
+    let odo = s.odometer.as_mut().unwrap();
+    odo.faults = vec![OdometerFault::wheel_spin(
+        TimeWindow::starting(2500.0, 300.0),
+        1.05,
+    )];
+    let kind = FilterKind::FuzzyAdaptive { window: 20 };
+    let r = run(&s, &kind, 1007, &RunOptions::default()).unwrap();
+    let distance = 70e3;
+    println!(
+        "fuzzy with a ×1.05 slip for 300 s: worst {:.1} m",
+        r.summary.max_position
+    );
+    assert!(
+        r.summary.max_position < 1e-3 * distance,
+        "{}",
+        r.summary.max_position
+    );
+    let late: Vec<f64> = r
+        .records
+        .iter()
+        .filter(|e| e.time > 3100.0 && !e.adaptation.rejected)
+        .map(|e| e.adaptation.alpha1)
+        .collect();
+    assert!(late.len() > 4000);
+    assert!(late.iter().all(|&a| a == 1.0), "α₁ not back to 1");
 }

@@ -55,16 +55,23 @@ impl DrRun {
     }
 }
 
-/// Runs scenario 003 (with its odometer faults if `faults`).
-pub fn run_003(faults: bool, mut processing: Processing) -> DrRun {
+/// Runs scenario 003 (with its odometer faults if `faults`) on its own
+/// seed.
+pub fn run_003(faults: bool, processing: Processing) -> DrRun {
+    run_003_seed(scenario_003().seed, faults, processing)
+}
+
+/// Runs scenario 003 (with its odometer faults if `faults`) with sensor
+/// noise from `seed`.
+pub fn run_003_seed(seed: u64, faults: bool, mut processing: Processing) -> DrRun {
     let sc = scenario_003();
     let mut odo_config = sc.odometer.clone().unwrap();
     if !faults {
         odo_config.faults.clear();
     }
     let earth = sc.earth;
-    let mut odo_sensor = OdometerSensor::new(odo_config, earth, sc.seed);
-    let mut imu_sensor = sc.imu_sensor(sc.seed);
+    let mut odo_sensor = OdometerSensor::new(odo_config, earth, seed);
+    let mut imu_sensor = sc.imu_sensor(seed);
     // The filter knows the calibrated mounting of the IMU on the vehicle.
     let [pitch, yaw] = sc.filter.odometer_mounting;
     let odometer = Odometer::new(0.1, 0.1).with_mounting(pitch, yaw);

@@ -241,7 +241,7 @@ fn wrong_type_names_line_column_and_the_expected_type() {
             "kind = \"kalman\"",
             "bad.toml:31:8: key `filters[0].kind`: unknown value `kalman`, expected one of \
              `ekf`, `sage-husa-fading`, `improved-adaptive`, `federated-ukf`, \
-             `federated-sr-ukf`, `ict-erekf`, `max-threshold`, `fuzzy-adaptive`, \
+             `federated-sr-ukf`, `ict-erekf`, `chi-square-gate`, `max-threshold`, `fuzzy-adaptive`, \
              `strong-tracking-fading`",
         ),
     ]);

@@ -3,9 +3,10 @@
 //! filter at a time gives, run by run and in the same order of summation.
 
 use kestrel_app::experiment::{run_with, RunOptions};
-use kestrel_app::process::chi_square_band;
 use kestrel_app::progress::Silent;
-use kestrel_app::reproduce::{nees_rows, run_monte_carlo, MonteCarloPlan, Window, WindowProbe};
+use kestrel_app::reproduce::{
+    nees_rows, run_monte_carlo, Anees, MonteCarloPlan, Window, WindowProbe,
+};
 use kestrel_app::scenario::{by_name, fault_free};
 
 #[test]
@@ -58,39 +59,32 @@ fn the_consistency_check_equals_one_filter_at_a_time() {
     )
     .unwrap();
     assert_eq!(rows.len(), 2 * s.filters.len());
-    let (lo, hi) = chi_square_band(3);
     let clean = fault_free(&s);
     let options = RunOptions::default()
         .with_duration(duration)
         .without_records();
     let start = duration * 0.1;
     for (kind, row) in s.filters.iter().cycle().zip(&rows) {
-        // The definition: per run, the sum over its epochs after the
-        // settling share; then over the runs in seed order.
-        let (mut sum, mut inside, mut epochs) = (0.0, 0usize, 0usize);
-        for seed in 5..8 {
-            let (mut rs, mut ri, mut re) = (0.0, 0usize, 0usize);
-            run_with(&clean, kind, seed, &options, |r| {
-                if let (true, Some(v)) = (r.time >= start, r.position_nees) {
-                    rs += v;
-                    re += 1;
-                    ri += usize::from(v >= lo && v <= hi);
-                }
+        // The definition: per run, the NEES at its epochs after the
+        // settling share; averaged over the runs epoch by epoch.
+        let runs: Vec<Vec<f64>> = (5..8)
+            .map(|seed| {
+                let mut nees = Vec::new();
+                run_with(&clean, kind, seed, &options, |r| {
+                    if r.time >= start {
+                        nees.push(r.position_nees.unwrap());
+                    }
+                })
+                .unwrap();
+                nees
             })
-            .unwrap();
-            (sum, inside, epochs) = (sum + rs, inside + ri, epochs + re);
-        }
+            .collect();
         assert!(row.label.starts_with(kind.label()), "{}", row.label);
-        assert!(epochs > 0);
-        assert_eq!(row.epochs, epochs, "{}", row.label);
-        assert_eq!(row.mean, Some(sum / epochs as f64), "{}", row.label);
-        assert_eq!(
-            row.inside,
-            Some(inside as f64 / epochs as f64),
-            "{}",
-            row.label
-        );
-        assert_eq!(row.failed, 0);
+        assert!(!runs[0].is_empty());
+        assert_eq!(row.anees, Anees::of(&runs, 3), "{}", row.label);
+        assert_eq!(row.anees.runs, 3);
+        assert_eq!(row.anees.epochs, runs[0].len());
+        assert_eq!((row.failed, row.completed), (0, 3));
     }
 }
 

@@ -19,7 +19,7 @@ const ROW: u32 = 30;
 /// Title, axis and margins, px.
 const FRAME: u32 = 150;
 /// Width of the row labels, px.
-const LABELS: u32 = 340;
+const LABELS: u32 = 560;
 
 /// Writes `<dir>/<stem>.png` and `<dir>/<stem>.svg`: metric `metric` (an
 /// index into [`STUDY_METRICS`](kestrel_app::reproduce::STUDY_METRICS)) of every
@@ -86,7 +86,7 @@ fn draw<DB: DrawingBackend>(
         }
         let r = &rows[i as usize];
         let mark = if r.headline { " *" } else { "" };
-        format!("{}: {}{mark}", r.paper, r.variant)
+        format!("{}: {} vs {}{mark}", r.paper, r.variant, r.baseline)
     };
     let mut chart = ChartBuilder::on(&body)
         .margin(15)

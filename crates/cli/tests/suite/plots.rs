@@ -400,8 +400,12 @@ fn epochs_csv_has_the_header_one_row_per_record_and_round_trips() {
         compression: 0.125,
         alpha1: 1.0 / 3.0,
         noise_trace: 1e-300,
+        ..Adaptation::default()
     });
     recs[3].velocity.y = f64::NAN;
+    for (k, r) in recs.iter_mut().enumerate() {
+        r.position_nees = Some(k as f64 * 0.75);
+    }
     let path = dir.join("epochs.csv");
     write_epochs_csv(&path, PositionAxes::EastNorthUp, &recs).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
@@ -409,7 +413,7 @@ fn epochs_csv_has_the_header_one_row_per_record_and_round_trips() {
         text.lines().next().unwrap(),
         "time_s,pos_east_m,pos_north_m,pos_up_m,vel_north_mps,vel_east_mps,vel_down_mps,\
          att_north_deg,att_east_deg,att_down_deg,nis,rejected,fade,inflation,inflated,\
-         compression,alpha1,noise_trace"
+         compression,alpha1,noise_trace,nees"
     );
     assert_eq!(text.lines().count(), 1 + recs.len());
     let mut reader = csv::Reader::from_path(&path).unwrap();
@@ -439,6 +443,7 @@ fn epochs_csv_has_the_header_one_row_per_record_and_round_trips() {
             a.compression,
             a.alpha1,
             a.noise_trace,
+            r.position_nees.unwrap(),
         ];
         assert_eq!(v.len(), expected.len());
         for (k, (got, want)) in v.iter().zip(expected).enumerate() {

@@ -51,6 +51,7 @@ fn args(dir: &Path, odo: bool) -> ProcessArgs {
         no_plots: true,
         smooth: false,
         force: false,
+        stop_on_divergence: false,
     }
 }
 
@@ -248,7 +249,7 @@ fn configuration_errors_name_the_line_column_or_key() {
         ("kind = ", "kind = \"fading\"\nrho = 1.5\n#", "filter.rho", "expected 0 ≤ ρ ≤ 1, found 1.5"),
         ("kind = ", "kind = \"sage-husa-fading\"\nlambda_max = 0.5\n#", "filter.lambda_max", "expected at least 1, found 0.5"),
         ("kind = ", "kind = \"ekf\"\nrho = 0.5\n#", "filter.rho", "does not apply to kind = \"ekf\", which takes no parameters"),
-        ("kind = ", "kind = \"kalman\"\n#", "filter.kind", "unknown value `kalman`, expected one of `ekf`, `sage-husa-fading`, `improved-adaptive`, `federated-ukf`, `federated-sr-ukf`, `ict-erekf`, `max-threshold`, `fuzzy-adaptive`, `strong-tracking-fading`"),
+        ("kind = ", "kind = \"kalman\"\n#", "filter.kind", "unknown value `kalman`, expected one of `ekf`, `sage-husa-fading`, `improved-adaptive`, `federated-ukf`, `federated-sr-ukf`, `ict-erekf`, `chi-square-gate`, `max-threshold`, `fuzzy-adaptive`, `strong-tracking-fading`"),
         ("position = [", "position = [91.0, 0.0, 0.0]\n#", "initial.position[0]", "expected a latitude in [-89.9, 89.9] deg, found 91"),
         ("position_std = ", "position_std = [1.0, 0.0, 1.0]\n#", "gnss.position_std[1]", "expected a standard deviation > 0 whose square in SI units is a normal double (neither 0 nor infinite), found 0"),
         ("gyro_markov_tau = ", "gyro_markov_tau = -5.0\n#", "imu.gyro_markov_tau", "expected a time ≥ 0.001 s (or inf; a shorter correlation is white noise), found -5"),
@@ -642,4 +643,85 @@ fn a_kf_gins_configuration_imports_with_every_unit_exact() {
         &d("p.toml"),
     ]);
     assert_eq!(again.status.code(), Some(1));
+}
+
+/// The improved adaptive filter with the whole-state fade (γ = 1, λ ≤ 10,
+/// `fade_states = "all"`, the defaults of a `process` configuration) runs
+/// away on scenario 002's drive (seed 1001): hundreds of kilometres within
+/// minutes. `process` used to end with status 0, "0 rejected" and no
+/// warning. The health monitor reports it within 60 s of the onset (the
+/// first update with a position error above 50 m, five times the
+/// standard EKF's largest on these data), the summary warns that the run
+/// diverged, and `--stop-on-divergence` stops it with an error and no
+/// result files. The standard EKF on the same multipath data is warned
+/// about too: its NEES leaves its bound (its covariance ignores the
+/// multipath).
+#[test]
+fn a_runaway_is_reported_and_stops_the_run_when_asked() {
+    use kestrel_app::experiment::HealthEventKind;
+    use kestrel_app::scenario::FadeBlock;
+    let (seed, duration) = (1001, 200.0);
+    let dir = sim("002", seed, duration);
+    let sc = by_name("002").unwrap();
+    let kind = FilterKind::ImprovedAdaptive {
+        forgetting: 0.97,
+        reserve: 1.0,
+        lambda_max: 10.0,
+        significance: 0.05,
+        fade_states: FadeBlock::All,
+    };
+    let truth = sc.trajectory().unwrap().initial_state();
+    let config = process_config(&sc, &sc.initial_state(&truth), &kind);
+    std::fs::write(dir.join("process.toml"), config).unwrap();
+    let onset = run(
+        &sc,
+        &kind,
+        seed,
+        &RunOptions::default().with_duration(duration),
+    )
+    .unwrap()
+    .records
+    .iter()
+    .find(|r| r.position.norm() > 50.0)
+    .map(|r| r.time)
+    .expect("the filter runs away");
+    let report = process(&args(&dir, false), &Context::default()).unwrap();
+    let first = report.health.first_alarm.expect("an alarm");
+    println!("onset {onset} s, alarm {first}");
+    assert_eq!(first.kind, HealthEventKind::Alarm);
+    assert!(
+        first.time >= onset - 60.0 && first.time <= onset + 60.0,
+        "onset {onset} s, alarm at {} s",
+        first.time
+    );
+    assert!(report.health.diverged());
+    let text = kestrel_cli::process::summary(&report);
+    assert!(
+        text.contains("warning: improved adaptive diverging at"),
+        "{text}"
+    );
+    assert!(
+        text.contains("warning: improved adaptive diverged"),
+        "{text}"
+    );
+    // Stopped when asked: an error naming the alarm, no result left.
+    let mut stop = args(&dir, false);
+    stop.out = dir.join("stopped");
+    stop.stop_on_divergence = true;
+    let e = process(&stop, &Context::default()).unwrap_err().to_string();
+    assert!(
+        e.contains("stopped (--stop-on-divergence)") && e.contains("diverging at"),
+        "{e}"
+    );
+    assert!(!dir.join("stopped/result.nav").exists());
+    // The standard EKF on the same data: its NEES alarm is a warning.
+    let ekf = process_config(&sc, &sc.initial_state(&truth), &FilterKind::Standard);
+    std::fs::write(dir.join("ekf.toml"), ekf).unwrap();
+    let mut plain = args(&dir, false);
+    plain.config = dir.join("ekf.toml");
+    plain.out = dir.join("ekf");
+    let report = process(&plain, &Context::default()).unwrap();
+    let text = kestrel_cli::process::summary(&report);
+    assert!(text.contains("warning: KF diverging at"), "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
 }

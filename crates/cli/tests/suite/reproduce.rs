@@ -74,20 +74,69 @@ fn reproduce_writes_tables_csv_and_figures() {
     assert!(summary.contains("002,KF,pos_east_m,"));
     assert!(summary.contains(",2,0,2.245"));
     // The consistency check, the study and the verdict are in the report.
-    assert!(stdout.contains("position NEES mean"), "{stdout}");
+    assert!(stdout.contains("position ANEES"), "{stdout}");
+    assert!(stdout.contains("health monitor"), "{stdout}");
     assert!(stdout.contains("sensitivity:"), "{stdout}");
+    // The verdict is computed from the study and names its seeds.
     assert!(
-        stdout.contains("verdict (of the full-length runs and study): "),
+        stdout.contains("verdict (computed from the sensitivity study, seeds 2000–2001): "),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("bursts capped (±15, 15, 25 m) vs the paper's baseline KF (2)"),
+        "{stdout}"
+    );
+    // The study's disclosure is computed: three variants, two filters, two seeds.
+    assert!(
+        stdout.contains(
+            "disclosure: study, seeds 2000–2001 (computed): 0 failed of 12 runs compared"
+        ),
         "{stdout}"
     );
     let study = std::fs::read_to_string(dir.join("sensitivity.csv")).unwrap();
-    // Two variants × three metrics, two seeds each.
-    assert_eq!(study.lines().count(), 1 + 2 * 3, "{study}");
+    // Three variants × three metrics, two seeds each.
+    assert_eq!(study.lines().count(), 1 + 3 * 3, "{study}");
     assert!(
         study.lines().skip(1).all(|l| l.contains(",2,2,0,0")),
         "{study}"
     );
     assert!(dir.join("sensitivity.png").is_file());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Without the study the verdict says it rests on the headline runs only.
+#[test]
+fn without_the_study_the_verdict_rests_on_the_headline_runs() {
+    let dir = temp_dir("002-no-study");
+    let out = kestrel(&[
+        "reproduce",
+        "002",
+        "--runs",
+        "2",
+        "--seed",
+        "3000",
+        "--duration",
+        "30",
+        "--study-runs",
+        "0",
+        "--no-plots",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        stdout.contains(
+            "verdict (computed from the headline runs only, seeds 3000–3001 (the study was skipped)): "
+        ),
+        "{stdout}"
+    );
+    assert!(!stdout.contains("sensitivity study, seeds"), "{stdout}");
+    assert!(!stdout.contains("headline seeds 2–21 include"), "{stdout}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -26,6 +26,7 @@ fn drive(name: &str) -> std::path::PathBuf {
 fn args(dir: &Path) -> ProcessArgs {
     ProcessArgs {
         smooth: true,
+        stop_on_divergence: false,
         ..run_args(dir, "process.toml", "r", &OUTAGES)
     }
 }
@@ -168,6 +169,7 @@ fn figures_without_a_truth() {
             no_plots: false,
             smooth: true,
             force: false,
+            stop_on_divergence: false,
         },
         &Context::default(),
     )

@@ -52,6 +52,7 @@ pub fn run_args(dir: &Path, config: &str, out: &str, outages: &[&str]) -> Proces
         no_plots: true,
         smooth: false,
         force: false,
+        stop_on_divergence: false,
     }
 }
 
