@@ -80,7 +80,7 @@ pub struct Variant {
 ///   errors).
 /// - 003: the max-threshold baseline over threshold (0.1–3 m/s), R
 ///   (0.1, 0.5 m/s), fixed or windowed R, each against the fuzzy filter
-///   with the same R; and sustained slips and a skid ([`SUSTAINED_003`]),
+///   with the same R; and sustained slips and a skid (`SUSTAINED_003`),
 ///   against the tuned threshold with fixed and with windowed R.
 /// - 004: with and without the unmodelled scale factors, with the GNSS
 ///   noise surge, with a realistic accelerometer-bias model in both
